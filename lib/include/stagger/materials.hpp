@@ -1,0 +1,65 @@
+#pragma once
+/// @file materials.hpp
+/// Material models: equations of state (pointwise p(rho, e) and c^2(rho, e)), strength
+/// (Wilkins hypo-elastic, von Mises) and programmed burn. NUMERICS.md section 8.
+#include <array>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace stagger {
+
+/// p = (gamma - 1) rho e.
+struct IdealGas {
+  double gamma = 1.4;
+};
+
+/// Mie-Grueneisen (paper eq. 6), eta = 1 - rho0/rho.
+struct MieGruneisen {
+  double rho0 = 0, a0 = 0, gamma0 = 0, s = 0;
+};
+
+/// JWL; V = rho0/rho; p_JWL = A(1-w/(R1 V))e^{-R1 V} + B(1-w/(R2 V))e^{-R2 V} + w rho e.
+struct Jwl {
+  double A = 0, B = 0, R1 = 0, R2 = 0, omega = 0, rho0 = 0;
+};
+
+using EquationOfState = std::variant<IdealGas, MieGruneisen, Jwl>;
+
+/// Elastic-perfectly-plastic strength: shear modulus mu and yield stress Y (von Mises).
+struct Strength {
+  double shear_modulus = 0;
+  double yield_stress = 0;
+};
+
+/// Programmed burn (LS-DYNA style): lighting time = distance to the nearest detonator
+/// (points, or a plane through `plane_point` with normal `plane_normal`) / detonation_speed.
+struct Burn {
+  double detonation_speed = 0;                     ///< D_CJ
+  std::vector<std::array<double, 2>> points;       ///< detonation points
+  std::optional<std::array<double, 4>> plane;      ///< (x0, y0, nx, ny): a detonation line
+  double time_offset = 0;                          ///< lighting time added to every zone
+  bool beta_burn = false;                          ///< also burn on compression
+  double cj_relative_volume = 0;                   ///< V_CJ/V0 for the beta burn
+};
+
+/// A named material: one EOS, optional strength and burn.
+struct Material {
+  std::string name;
+  EquationOfState eos = IdealGas{};
+  std::optional<Strength> strength;
+  std::optional<Burn> burn;
+  double min_energy = -1e300;  ///< floor reported as an error when crossed (EOS domain)
+};
+
+/// Pointwise EOS evaluation (used by set-up, tests and the exact solutions).
+double eos_pressure(const EquationOfState& eos, double rho, double e);
+/// Adiabatic sound speed squared c^2 = dp/drho|_e + p/rho^2 dp/de|_rho.
+double eos_sound_speed_squared(const EquationOfState& eos, double rho, double e);
+/// Specific internal energy giving pressure p at density rho (inverse of eos_pressure in e).
+double eos_energy_from_pressure(const EquationOfState& eos, double rho, double p);
+/// Name of the EOS kind ("ideal_gas", "mie_gruneisen", "jwl").
+std::string eos_kind(const EquationOfState& eos);
+
+}  // namespace stagger

@@ -1,0 +1,102 @@
+#pragma once
+/// @file mesh.hpp
+/// Plain-array meshes: the polygon soup that importers produce, and the checked,
+/// counter-clockwise, flat-array Mesh that the physics runs on.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace stagger {
+
+using Index = std::int32_t;
+
+/// A boundary curve segment (two point ids) with the index of its tag name.
+struct TaggedEdge {
+  std::int64_t a = 0, b = 0;
+  int tag = 0;
+};
+
+/// Polygons as they come from a file or a generator: any orientation, possibly with
+/// orphan points. Regions (physical surfaces) and boundary tags (physical curves) by name.
+struct PolygonSoup {
+  std::vector<double> x, y;                   ///< point coordinates
+  std::vector<std::int64_t> polygon_begin{0};  ///< offsets into polygon_points (size npoly+1)
+  std::vector<std::int64_t> polygon_points;   ///< point ids of each polygon, in order
+  std::vector<int> polygon_region;            ///< region index of each polygon
+  std::vector<std::string> region_names;      ///< region index -> name
+  std::vector<TaggedEdge> tagged_edges;       ///< boundary segments with tag indices
+  std::vector<std::string> tag_names;         ///< tag index -> name
+  std::string source = "<memory>";            ///< file name (or description) for messages
+
+  /// Appends a polygon; returns its index.
+  std::size_t add_polygon(const std::vector<std::int64_t>& points, int region);
+  std::size_t num_polygons() const { return polygon_begin.size() - 1; }
+};
+
+/// A named boundary: its edges (each oriented as the zone it belongs to, CCW) and points.
+struct BoundaryTag {
+  std::string name;
+  std::vector<std::array<Index, 2>> edges;
+  std::vector<Index> points;  ///< sorted, unique
+};
+
+/// The checked mesh. Zones are counter-clockwise polygons sorted by region; each zone's
+/// corners are contiguous; corner c belongs to zone corner_zone[c] and point corner_point[c].
+/// The side of corner c is the edge from corner_point[c] to the next corner's point.
+struct Mesh {
+  std::vector<double> x, y;                  ///< point positions
+  std::vector<Index> zone_corner_begin{0};   ///< size nzones+1
+  std::vector<Index> corner_point;           ///< size ncorners
+  std::vector<Index> corner_zone;            ///< size ncorners
+  std::vector<Index> point_corner_begin{0};  ///< CSR point -> corners, size npoints+1
+  std::vector<Index> point_corners;          ///< corners of each point, ascending
+  std::vector<Index> zone_region;            ///< region index of each zone
+  std::vector<Index> region_zone_begin{0};   ///< zones of region r: [begin[r], begin[r+1])
+  std::vector<std::string> region_names;
+  std::vector<BoundaryTag> tags;
+  std::string source = "<memory>";
+
+  Index num_points() const { return static_cast<Index>(x.size()); }
+  Index num_zones() const { return static_cast<Index>(zone_corner_begin.size()) - 1; }
+  Index num_corners() const { return static_cast<Index>(corner_point.size()); }
+  Index num_regions() const { return static_cast<Index>(region_names.size()); }
+  bool all_quads() const;
+  /// Index of the region or tag with this name, or -1.
+  int region_index(const std::string& name) const;
+  int tag_index(const std::string& name) const;
+};
+
+/// What build_mesh repaired or dropped, for the user to read.
+struct MeshBuildReport {
+  int reoriented_zones = 0;
+  int dropped_points = 0;
+  std::vector<std::string> notes;
+};
+
+/// Options of the soup -> mesh import.
+struct MeshBuildOptions {
+  bool quads_only = false;  ///< reject any zone that is not a quadrilateral
+};
+
+/// Checks a polygon soup with CGAL and builds the flat arrays: orientation made consistent
+/// and counter-clockwise, non-manifold points/edges, degenerate or self-intersecting zones
+/// and duplicate points rejected (stagger::Error naming the zone/point and the source),
+/// orphan points dropped, zones sorted by region, tagged edges matched to mesh edges.
+Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options = {},
+                MeshBuildReport* report = nullptr);
+
+/// Mesh quality figures (user report, `stagger mesh --check`).
+struct MeshQuality {
+  double min_area = 0, max_area = 0;
+  double max_aspect_ratio = 0;    ///< longest edge / shortest edge over zones
+  double min_angle_degrees = 0;   ///< smallest interior angle
+  Index non_convex_zones = 0;
+  Index triangles = 0, quads = 0, other_polygons = 0;
+};
+MeshQuality mesh_quality(const Mesh& mesh);
+
+/// Signed area of zone z (positive for CCW).
+double zone_area(const Mesh& mesh, Index z);
+
+}  // namespace stagger

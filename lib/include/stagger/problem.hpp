@@ -1,0 +1,108 @@
+#pragma once
+/// @file problem.hpp
+/// A complete problem set-up in code: mesh, materials per region, initial conditions,
+/// boundary conditions, numerical options. A scene file is translated into exactly this.
+#include <array>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "stagger/materials.hpp"
+#include "stagger/mesh.hpp"
+
+namespace stagger {
+
+/// A scalar field of position, f(x, y).
+using SpaceFunction = std::function<double(double x, double y)>;
+/// A scalar function of time, f(t).
+using TimeFunction = std::function<double(double t)>;
+
+/// Returns a SpaceFunction / TimeFunction that is a constant.
+SpaceFunction constant_field(double value);
+TimeFunction constant_in_time(double value);
+
+/// Initial state of one region. Zone fields are evaluated at the zone centre (vertex
+/// average), point fields at the points (a point shared by regions takes the first region
+/// in Problem::regions that contains it). Give either pressure or specific_internal_energy.
+struct RegionSetup {
+  std::string region;    ///< region name in the mesh
+  std::string material;  ///< material name in Problem::materials
+  SpaceFunction density;
+  SpaceFunction pressure;                  ///< or:
+  SpaceFunction specific_internal_energy;  ///< (exactly one of the two)
+  SpaceFunction velocity_x = constant_field(0.0);
+  SpaceFunction velocity_y = constant_field(0.0);
+  /// Initial deviatoric stress (materials with strength only); empty = zero.
+  SpaceFunction stress_xx, stress_yy, stress_xy;
+};
+
+/// Internal energy `energy` (total, not specific) deposited at t = 0, shared by mass
+/// among the zones that have the point nearest to (x, y) as a vertex (Sedov).
+struct EnergyDeposit {
+  double x = 0, y = 0;
+  double energy = 0;
+};
+
+enum class BoundaryKind {
+  wall,      ///< v.n = 0 (symmetry plane or rigid wall, any orientation)
+  velocity,  ///< v.n = u(t).n, u = (velocity_x(t), velocity_y(t)); tangential free
+  free,      ///< traction-free
+  pressure,  ///< applied pressure p(t) on the boundary edges
+  periodic,  ///< paired with `partner`; points matched by translation
+};
+
+struct BoundaryCondition {
+  std::string tag;
+  BoundaryKind kind = BoundaryKind::wall;
+  TimeFunction velocity_x = constant_in_time(0.0), velocity_y = constant_in_time(0.0);
+  TimeFunction pressure = constant_in_time(0.0);
+  std::string partner;  ///< periodic: the other tag
+};
+
+enum class Viscosity { bulk, edge };
+enum class Hourglass { gamma, flanagan_belytschko };
+enum class StressUpdate { rate, objective };
+
+/// Numerical options; defaults are NUMERICS.md's.
+struct HydroOptions {
+  double cfl = 0.15;                 ///< c_t in (0, 0.5]... up to the documented maximum
+  Viscosity viscosity = Viscosity::bulk;
+  double q1 = 1.5, q2 = 0.06;        ///< bulk q (quadratic, linear)
+  double edge_c1 = 0.5, edge_c2 = 1.0;  ///< edge viscosity (linear, quadratic)
+  bool edge_limiter = true;          ///< Christensen limiter for the edge viscosity
+  Hourglass hourglass = Hourglass::gamma;
+  double hourglass_coefficient = 0.1;  ///< Q; 0 turns hourglass control off
+  StressUpdate stress_update = StressUpdate::rate;
+  bool fresh_predictor = false;      ///< evaluate f^n afresh each cycle (reference option)
+  double volume_limit = 0.1;         ///< f_A
+  double dt_growth = 1.1;
+  double dt_init = 0;                ///< 0 = the CFL value at t = 0
+  double dt_max = 0;                 ///< 0 = none
+  double dt_min = 0;                 ///< 0 = 1e-8 t_end
+  int max_retries = 3;               ///< halvings of dt for a tangled step
+};
+
+/// Manufactured-solution source terms (NUMERICS section 9).
+struct Sources {
+  /// Momentum source per unit volume (force density) at (x, y, t): point force V_p s.
+  std::function<std::array<double, 2>(double x, double y, double t)> momentum;
+  /// Specific energy source s_e(x, y, t) (per unit mass and time).
+  std::function<double(double x, double y, double t)> energy;
+};
+
+struct Problem {
+  std::string name = "problem";
+  Mesh mesh;
+  std::vector<Material> materials;
+  std::vector<RegionSetup> regions;
+  std::vector<BoundaryCondition> boundaries;
+  std::vector<EnergyDeposit> deposits;
+  std::optional<Sources> sources;
+  HydroOptions options;
+  double t_end = 0;
+  /// Checks names, ranges and completeness; throws stagger::Error with the offending item.
+  void validate() const;
+};
+
+}  // namespace stagger

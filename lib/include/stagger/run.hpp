@@ -1,0 +1,43 @@
+#pragma once
+/// @file run.hpp
+/// The run driver: advances a Simulation to t_end, writing dumps (.vtu + .pvd), history.csv,
+/// checkpoints and summary.json into an output directory. The `stagger run` command and
+/// embedding codes use the same driver.
+#include <functional>
+#include <string>
+
+#include "stagger/output.hpp"
+#include "stagger/verify.hpp"
+
+namespace stagger {
+
+class Simulation;
+
+struct RunControl {
+  std::string output_directory = "output";
+  std::string name = "problem";        ///< base name of the .pvd and .vtu files
+  double dump_interval = 0;            ///< time between dumps; 0 = only first and last
+  bool dumps = true;                   ///< false: no .vtu/.pvd (benchmarks)
+  int history_every = 1;               ///< record history every N cycles
+  long checkpoint_every_cycles = 500;  ///< 0 = never (by cycles)
+  double checkpoint_every_seconds = 60;  ///< wall-clock; 0 = never (by time)
+  bool checkpoints = true;
+  bool progress = false;               ///< a progress line on stderr
+  Reference reference;                 ///< errors/diagnostics for summary.json (may be empty)
+};
+
+struct RunResult {
+  bool completed = false;
+  std::string message;  ///< the error that stopped the run, if any
+  RunSummary summary;
+};
+
+/// Runs to t_end. On a stagger::Error mid-run it writes a final dump and the summary with
+/// the error as status, and returns completed = false (it does not throw for run failures;
+/// it throws for unusable output directories).
+RunResult run(Simulation& simulation, const RunControl& control);
+
+/// Resumes from a checkpoint written by run() and continues to t_end.
+RunResult resume(Simulation& simulation, const RunControl& control, const std::string& checkpoint);
+
+}  // namespace stagger

@@ -1,0 +1,29 @@
+#pragma once
+/// @file scene.hpp
+/// Scene files (TOML) translated into a Problem and a RunControl. See docs/scenes.md.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "stagger/problem.hpp"
+#include "stagger/run.hpp"
+
+namespace stagger {
+
+struct Scene {
+  std::string file;        ///< path of the scene file
+  Problem problem;
+  RunControl control;
+  std::vector<std::string> notes;  ///< repairs made on import (e.g. reoriented zones)
+};
+
+/// Reads, meshes and validates a scene. `overrides` are ("section.key", "value") pairs
+/// applied to the TOML before it is interpreted (the CLI's --set). Errors name the file,
+/// the line and the key.
+Scene load_scene(const std::string& path,
+                 const std::vector<std::pair<std::string, std::string>>& overrides = {});
+
+/// A human-readable description of the resolved set-up (`stagger check`).
+std::string describe(const Scene& scene);
+
+}  // namespace stagger

@@ -1,0 +1,108 @@
+// Problem validation: every name resolved, every number in range, before any array is built.
+#include "stagger/problem.hpp"
+
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "stagger/error.hpp"
+
+namespace stagger {
+
+SpaceFunction constant_field(double value) {
+  return [value](double, double) { return value; };
+}
+
+TimeFunction constant_in_time(double value) {
+  return [value](double) { return value; };
+}
+
+namespace {
+
+std::string list_names(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + ("'" + n + "'");
+  return out.empty() ? "(none)" : out;
+}
+
+void require(bool condition, const std::string& message) {
+  if (!condition) throw Error(message);
+}
+
+void validate_material(const Material& m) {
+  const std::string where = "material '" + m.name + "': ";
+  require(!m.name.empty(), "a material has no name");
+  if (const auto* g = std::get_if<IdealGas>(&m.eos)) {
+    require(g->gamma > 1.0, where + "ideal gas gamma must be > 1 (got " + std::to_string(g->gamma) + ")");
+  } else if (const auto* mg = std::get_if<MieGruneisen>(&m.eos)) {
+    require(mg->rho0 > 0 && mg->a0 > 0, where + "Mie-Gruneisen rho0 and a0 must be > 0");
+    require(mg->s >= 0 && mg->gamma0 >= 0, where + "Mie-Gruneisen s and Gamma0 must be >= 0");
+  } else if (const auto* j = std::get_if<Jwl>(&m.eos)) {
+    require(j->rho0 > 0 && j->R1 > 0 && j->R2 > 0 && j->omega > 0,
+            where + "JWL rho0, R1, R2 and omega must be > 0");
+  }
+  if (m.strength) {
+    require(m.strength->shear_modulus >= 0, where + "shear_modulus must be >= 0");
+    require(m.strength->yield_stress >= 0, where + "yield_stress must be >= 0");
+  }
+  if (m.burn) {
+    require(m.burn->detonation_speed > 0, where + "burn detonation_speed must be > 0");
+    require(!m.burn->points.empty() || m.burn->plane.has_value(),
+            where + "burn needs detonation points or a detonation plane");
+    require(std::holds_alternative<Jwl>(m.eos), where + "burn needs a JWL equation of state");
+  }
+}
+
+}  // namespace
+
+void Problem::validate() const {
+  require(mesh.num_zones() > 0, "problem '" + name + "': the mesh has no zones");
+  require(std::isfinite(t_end) && t_end > 0, "problem '" + name + "': end time must be > 0 (got " +
+                                                  std::to_string(t_end) + ")");
+  const auto& o = options;
+  require(o.cfl > 0 && o.cfl < 1, "numerics: cfl must be in (0, 1) (got " + std::to_string(o.cfl) + ")");
+  require(o.q1 >= 0 && o.q2 >= 0, "numerics: q1 and q2 must be >= 0");
+  require(o.edge_c1 >= 0 && o.edge_c2 >= 0, "numerics: edge_c1 and edge_c2 must be >= 0");
+  require(o.hourglass_coefficient >= 0, "numerics: hourglass_coefficient must be >= 0");
+  require(o.volume_limit > 0 && o.volume_limit <= 1, "numerics: volume_limit must be in (0, 1]");
+  require(o.dt_growth >= 1, "numerics: dt_growth must be >= 1");
+  require(o.dt_init >= 0 && o.dt_max >= 0 && o.dt_min >= 0, "numerics: dt_init, dt_max, dt_min must be >= 0");
+  require(o.max_retries >= 0 && o.max_retries <= 30, "numerics: max_retries must be in [0, 30]");
+
+  std::set<std::string> material_names;
+  for (const auto& m : materials) {
+    validate_material(m);
+    require(material_names.insert(m.name).second, "material '" + m.name + "' is defined twice");
+  }
+  std::vector<std::string> all_materials(material_names.begin(), material_names.end());
+
+  std::set<std::string> covered;
+  for (const auto& r : regions) {
+    require(mesh.region_index(r.region) >= 0, "region '" + r.region + "' is not in the mesh " + mesh.source +
+                                                  " (its regions: " + list_names(mesh.region_names) + ")");
+    require(material_names.count(r.material) > 0, "region '" + r.region + "': unknown material '" + r.material +
+                                                       "' (defined: " + list_names(all_materials) + ")");
+    require(covered.insert(r.region).second, "region '" + r.region + "' is set up twice");
+    require(static_cast<bool>(r.density), "region '" + r.region + "': no density given");
+    require(static_cast<bool>(r.pressure) != static_cast<bool>(r.specific_internal_energy),
+            "region '" + r.region + "': give exactly one of pressure and specific_internal_energy");
+  }
+  for (const auto& name : mesh.region_names) {
+    require(covered.count(name) > 0, "mesh region '" + name + "' of " + mesh.source +
+                                         " has no material: add a region set-up for it");
+  }
+  for (const auto& b : boundaries) {
+    require(mesh.tag_index(b.tag) >= 0, "boundary tag '" + b.tag + "' is not in the mesh " + mesh.source +
+                                            " (its tags: " + [&] {
+                                              std::vector<std::string> t;
+                                              for (const auto& tag : mesh.tags) t.push_back(tag.name);
+                                              return list_names(t);
+                                            }() + ")");
+    if (b.kind == BoundaryKind::periodic) {
+      require(mesh.tag_index(b.partner) >= 0, "periodic boundary '" + b.tag + "': partner tag '" + b.partner +
+                                                  "' is not in the mesh");
+    }
+  }
+}
+
+}  // namespace stagger

@@ -1,0 +1,294 @@
+// Simulation set-up: masses (constant in time), initial state, boundary conditions and the
+// choice of kernels (NUMERICS sections 1, 9; ARCHITECTURE "skip what a scene doesn't need").
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "hydro/boundary.hpp"
+#include "hydro/simulation_impl.hpp"
+#include "hydro/zone_geometry.hpp"
+#include "stagger/error.hpp"
+
+namespace stagger {
+
+namespace {
+
+ZoneVertices load_vertices(const Mesh& m, Index z) {
+  ZoneVertices v;
+  const Index b = m.zone_corner_begin[z];
+  v.n = m.zone_corner_begin[z + 1] - b;
+  for (int k = 0; k < v.n; ++k) {
+    v.x[k] = m.x[m.corner_point[b + k]];
+    v.y[k] = m.y[m.corner_point[b + k]];
+  }
+  return v;
+}
+
+std::string zone_label(const Mesh& m, Index z) {
+  std::ostringstream out;
+  out << "zone " << z << " (region '" << m.region_names[m.zone_region[z]] << "', points";
+  for (Index c = m.zone_corner_begin[z]; c < m.zone_corner_begin[z + 1]; ++c) out << ' ' << m.corner_point[c];
+  out << ")";
+  return out.str();
+}
+
+// Points that continue each zone edge into the neighbouring zones (edge viscosity limiter).
+void setup_edge_continuation(Simulation::Impl& s) {
+  const Mesh& m = s.mesh();
+  std::map<std::pair<Index, Index>, Index> edge_zone;  // directed edge (a, b) -> zone having it
+  for (Index z = 0; z < m.num_zones(); ++z) {
+    const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
+    for (Index k = 0; k < n; ++k) edge_zone[{m.corner_point[b + k], m.corner_point[b + (k + 1) % n]}] = z;
+  }
+  // Ratio used where an edge has no neighbour: 1 (mirror image) at walls, symmetry planes,
+  // pistons and periodic sides; 0 at free and pressure boundaries (NUMERICS section 7).
+  std::map<std::pair<Index, Index>, float> boundary_ratio;
+  for (const auto& bc : s.problem.boundaries) {
+    const float r = (bc.kind == BoundaryKind::free || bc.kind == BoundaryKind::pressure) ? 0.f : 1.f;
+    for (const auto& e : m.tags[m.tag_index(bc.tag)].edges) boundary_ratio[{e[0], e[1]}] = r;
+  }
+  // The vertex of zone zn adjacent to point p other than `other`.
+  auto other_neighbour = [&](Index zn, Index p, Index other) -> Index {
+    const Index b = m.zone_corner_begin[zn], n = m.zone_corner_begin[zn + 1] - b;
+    for (Index k = 0; k < n; ++k)
+      if (m.corner_point[b + k] == p) {
+        const Index next = m.corner_point[b + (k + 1) % n], prev = m.corner_point[b + (k + n - 1) % n];
+        return next == other ? prev : next;
+      }
+    return -1;
+  };
+  s.continuation.assign(m.num_corners(), {});
+  for (Index z = 0; z < m.num_zones(); ++z) {
+    const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
+    for (Index k = 0; k < n; ++k) {
+      const Index p0 = m.corner_point[b + k], p1 = m.corner_point[b + (k + 1) % n];
+      const Index p2 = m.corner_point[b + (k + 2) % n], pm = m.corner_point[b + (k + n - 1) % n];
+      EdgeContinuation& ec = s.continuation[b + k];
+      // Ahead: beyond p1, in the zone across edge (p1, p2) (it holds that edge as (p2, p1)).
+      if (auto it = edge_zone.find({p2, p1}); it != edge_zone.end()) {
+        ec.ahead = other_neighbour(it->second, p1, p2);
+      } else {
+        auto r = boundary_ratio.find({p1, p2});
+        ec.ahead_ratio = r == boundary_ratio.end() ? 0.f : r->second;
+      }
+      // Behind: beyond p0, in the zone across edge (pm, p0).
+      if (auto it = edge_zone.find({p0, pm}); it != edge_zone.end()) {
+        ec.behind = other_neighbour(it->second, p0, pm);
+      } else {
+        auto r = boundary_ratio.find({pm, p0});
+        ec.behind_ratio = r == boundary_ratio.end() ? 0.f : r->second;
+      }
+    }
+  }
+}
+
+}  // namespace
+
+Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
+  problem.validate();
+  const Mesh& m = mesh();
+  const Index nz = m.num_zones(), np = m.num_points(), nc = m.num_corners();
+  const HydroOptions& opt = problem.options;
+
+  zone_corner_begin = m.zone_corner_begin;
+  corner_point = m.corner_point;
+  point_corner_begin = m.point_corner_begin;
+  point_corners = m.point_corners;
+  all_quads = m.all_quads();
+  for (Index z = 0; z < nz; ++z) {
+    const Index n = m.zone_corner_begin[z + 1] - m.zone_corner_begin[z];
+    if (n < 3 || n > kMaxZoneVertices) {
+      throw Error(zone_label(m, z) + " has " + std::to_string(n) + " vertices; zones must have 3 to " +
+                  std::to_string(kMaxZoneVertices));
+    }
+  }
+
+  // Material of each region, zone ranges (zones are sorted by region in the Mesh).
+  std::vector<int> region_setup(m.num_regions(), -1), region_material(m.num_regions(), -1);
+  for (std::size_t i = 0; i < problem.regions.size(); ++i) {
+    const int r = m.region_index(problem.regions[i].region);
+    region_setup[r] = static_cast<int>(i);
+    for (std::size_t k = 0; k < problem.materials.size(); ++k)
+      if (problem.materials[k].name == problem.regions[i].material) region_material[r] = static_cast<int>(k);
+  }
+  for (Index r = 0; r < m.num_regions(); ++r) {
+    if (m.region_zone_begin[r] < m.region_zone_begin[r + 1])
+      ranges.push_back({m.region_zone_begin[r], m.region_zone_begin[r + 1], region_material[r]});
+    const Material& mat = problem.materials[region_material[r]];
+    any_strength = any_strength || mat.strength.has_value();
+    any_burn = any_burn || mat.burn.has_value();
+  }
+  edge_viscosity = opt.viscosity == Viscosity::edge;
+  dt_min = opt.dt_min > 0 ? opt.dt_min : 1e-8 * problem.t_end;
+
+  // Initial density and energy at zone centres; corner masses rho^0 A_c^0 (NUMERICS section 1).
+  zone_mass.assign(nz, 0.0);
+  point_mass.assign(np, 0.0);
+  e.assign(nz, 0.0);
+  rho.assign(nz, 0.0);
+  if (any_strength) {
+    for (auto* v : {&sxx, &syy, &sxy, &sxx_new, &syy_new, &sxy_new, &sxx_half, &syy_half, &sxy_half, &plastic,
+                    &plastic_new, &shear_modulus_of_zone})
+      v->assign(nz, 0.0);
+  }
+  std::vector<double> corner_area(kMaxZoneVertices);
+  for (Index z = 0; z < nz; ++z) {
+    const ZoneVertices v = load_vertices(m, z);
+    double cx = 0, cy = 0;
+    for (int k = 0; k < v.n; ++k) cx += v.x[k], cy += v.y[k];
+    cx /= v.n;
+    cy /= v.n;
+    const int r = m.zone_region[z];
+    const RegionSetup& setup = problem.regions[region_setup[r]];
+    const Material& mat = problem.materials[region_material[r]];
+    const double rho0 = setup.density(cx, cy);
+    if (!(rho0 > 0) || !std::isfinite(rho0)) {
+      std::ostringstream msg;
+      msg << "region '" << setup.region << "': initial density " << rho0 << " at (" << cx << ", " << cy << ") in "
+          << zone_label(m, z) << " must be positive and finite";
+      throw Error(msg.str());
+    }
+    double e0 = 0;
+    if (setup.specific_internal_energy) {
+      e0 = setup.specific_internal_energy(cx, cy);
+    } else {
+      const double p0 = setup.pressure(cx, cy);
+      try {
+        e0 = eos_energy_from_pressure(mat.eos, rho0, p0);
+      } catch (const Error& err) {
+        throw Error("region '" + setup.region + "', " + zone_label(m, z) + ": " + err.what());
+      }
+    }
+    if (!std::isfinite(e0)) throw Error("region '" + setup.region + "': initial energy is not finite in " + zone_label(m, z));
+    e[z] = e0;
+    rho[z] = rho0;
+    corner_areas(v, corner_area.data());
+    for (int k = 0; k < v.n; ++k) {
+      const Index c = m.zone_corner_begin[z] + k;
+      const double mc = rho0 * corner_area[k];
+      zone_mass[z] += mc;
+      point_mass[m.corner_point[c]] += mc;
+    }
+    if (mat.strength) {
+      shear_modulus_of_zone[z] = mat.strength->shear_modulus;
+      if (setup.stress_xx) sxx[z] = setup.stress_xx(cx, cy);
+      if (setup.stress_yy) syy[z] = setup.stress_yy(cx, cy);
+      if (setup.stress_xy) sxy[z] = setup.stress_xy(cx, cy);
+    }
+  }
+  for (Index p = 0; p < np; ++p) {
+    if (!(point_mass[p] > 0)) {
+      std::ostringstream msg;
+      msg << "point " << p << " (" << m.x[p] << ", " << m.y[p] << ") has no mass: a zone around it is degenerate";
+      throw Error(msg.str());
+    }
+  }
+
+  // Energy deposits (Sedov): shared by mass among the zones around the nearest point.
+  for (const auto& d : problem.deposits) {
+    Index nearest = 0;
+    double best = std::numeric_limits<double>::max();
+    for (Index p = 0; p < np; ++p) {
+      const double dist = std::hypot(m.x[p] - d.x, m.y[p] - d.y);
+      if (dist < best) best = dist, nearest = p;
+    }
+    double mass = 0;
+    for (Index k = m.point_corner_begin[nearest]; k < m.point_corner_begin[nearest + 1]; ++k)
+      mass += zone_mass[m.corner_zone[m.point_corners[k]]];
+    for (Index k = m.point_corner_begin[nearest]; k < m.point_corner_begin[nearest + 1]; ++k)
+      e[m.corner_zone[m.point_corners[k]]] += d.energy / mass;
+  }
+
+  // Point velocities: the first region set-up (in problem order) whose zones touch the point.
+  vx.assign(np, 0.0);
+  vy.assign(np, 0.0);
+  std::vector<char> done(np, 0);
+  for (const auto& setup : problem.regions) {
+    const int r = m.region_index(setup.region);
+    for (Index z = m.region_zone_begin[r]; z < m.region_zone_begin[r + 1]; ++z)
+      for (Index c = m.zone_corner_begin[z]; c < m.zone_corner_begin[z + 1]; ++c) {
+        const Index p = m.corner_point[c];
+        if (done[p]) continue;
+        done[p] = 1;
+        vx[p] = setup.velocity_x(m.x[p], m.y[p]);
+        vy[p] = setup.velocity_y(m.x[p], m.y[p]);
+        if (!std::isfinite(vx[p]) || !std::isfinite(vy[p])) {
+          std::ostringstream msg;
+          msg << "region '" << setup.region << "': initial velocity is not finite at point " << p << " (" << m.x[p]
+              << ", " << m.y[p] << ")";
+          throw Error(msg.str());
+        }
+      }
+  }
+
+  // Programmed burn: lighting time and burn length per zone (fixed at t = 0).
+  if (any_burn) {
+    burn.assign(nz, 0.0);
+    burn_new.assign(nz, 0.0);
+    lighting_time.assign(nz, std::numeric_limits<double>::infinity());
+    burn_length.assign(nz, 1.0);
+    for (const auto& range : ranges) {
+      const Material& mat = problem.materials[range.material];
+      for (Index z = range.begin; z < range.end; ++z) {
+        if (!mat.burn) {
+          burn[z] = burn_new[z] = 1.0;  // inert zones: no burn factor
+          continue;
+        }
+        const ZoneVertices v = load_vertices(m, z);
+        double cx = 0, cy = 0, longest_edge = 0;
+        for (int k = 0; k < v.n; ++k) {
+          cx += v.x[k] / v.n, cy += v.y[k] / v.n;
+          const int k1 = (k + 1) % v.n;
+          longest_edge = std::max(longest_edge, std::hypot(v.x[k1] - v.x[k], v.y[k1] - v.y[k]));
+        }
+        double distance = std::numeric_limits<double>::infinity();
+        for (const auto& pt : mat.burn->points) distance = std::min(distance, std::hypot(cx - pt[0], cy - pt[1]));
+        if (mat.burn->plane) {
+          const auto& pl = *mat.burn->plane;
+          const double nn = std::hypot(pl[2], pl[3]);
+          distance = std::min(distance, std::abs((cx - pl[0]) * pl[2] + (cy - pl[1]) * pl[3]) / nn);
+        }
+        lighting_time[z] = mat.burn->time_offset + distance / mat.burn->detonation_speed;
+        // LS-DYNA's F1 = 2 (t - t_l) D A_max / (3 V): in 2D, A_max -> longest edge, V -> area.
+        burn_length[z] = 1.5 * polygon_area(v) / longest_edge;
+      }
+    }
+  }
+
+  setup_boundaries(*this);
+  if (edge_viscosity) {
+    setup_edge_continuation(*this);
+    rho_half.assign(nz, 0.0);
+    c_half.assign(nz, 0.0);
+  }
+  has_external = !pressure_edges.empty() || (problem.sources && problem.sources->momentum);
+  if (has_external) {
+    ext_fx.assign(np, 0.0);
+    ext_fy.assign(np, 0.0);
+  }
+  if (problem.sources && problem.sources->momentum) {
+    src_fx.assign(np, 0.0);
+    src_fy.assign(np, 0.0);
+    corner_scratch.assign(nc, 0.0);
+  }
+  if (problem.sources && problem.sources->energy) source_energy.assign(nz, 0.0);
+  constrained = constrained_points(*this);
+  free_vx.assign(constrained.size(), 0.0);
+  free_vy.assign(constrained.size(), 0.0);
+
+  // Work arrays.
+  x = m.x;
+  y = m.y;
+  for (auto* v : {&x_new, &y_new, &x_half, &y_half, &vx_new, &vy_new, &vx_star, &vy_star}) v->assign(np, 0.0);
+  for (auto* v : {&area, &e_new, &p, &q, &c}) v->assign(nz, 0.0);
+  for (auto* v : {&fx_prev, &fy_prev, &fx, &fy}) v->assign(nc, 0.0);
+
+  // Constrained points carry their prescribed velocity from t = 0 (no impulse in step one).
+  apply_constraints(*this, vx, vy, 0.0);
+  recompute_state();
+  energy_initial = kinetic_energy() + internal_energy();
+}
+
+}  // namespace stagger

@@ -1,0 +1,46 @@
+#pragma once
+/// @file meshgen.hpp
+/// Geometries to polygon soups: .geo files meshed by gmsh, .msh files (MSH 2.2 and 4.1)
+/// read by gmsh, and built-in structured generators. gmsh is a global singleton: every
+/// function here serializes its use with a mutex (safe to call from several threads, but
+/// not in parallel).
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "stagger/mesh.hpp"
+
+namespace stagger::meshgen {
+
+/// What to do with triangles left after recombination.
+enum class TrianglePolicy {
+  accept,     ///< keep mixed quad/triangle zones (the kernels handle polygons)
+  subdivide,  ///< split every element into quads (gmsh's all-quad subdivision)
+  reject,     ///< stagger::Error naming the file and the number of triangles
+};
+
+struct GeoOptions {
+  std::vector<std::pair<std::string, double>> parameters;  ///< like gmsh -setnumber
+  bool recombine = true;
+  TrianglePolicy triangles = TrianglePolicy::accept;
+};
+
+/// Meshes a .geo file with gmsh; physical surfaces become regions, physical curves tags.
+PolygonSoup read_geo(const std::string& path, const GeoOptions& options = {});
+/// Reads a .msh file (MSH 2.2 or 4.1) through gmsh.
+PolygonSoup read_msh(const std::string& path, TrianglePolicy triangles = TrianglePolicy::accept);
+/// Dispatches on the extension (.geo or .msh).
+PolygonSoup read_mesh_file(const std::string& path, const GeoOptions& options = {});
+/// Writes a mesh as MSH 4.1 (regions as physical surfaces, tags as physical curves).
+void write_msh(const std::string& path, const Mesh& mesh);
+
+/// Rectangle [x0,x1]x[y0,y1], nx x ny quads; region "domain"; tags left, right, bottom, top.
+PolygonSoup rectangle(double x0, double x1, double y0, double y1, int nx, int ny);
+/// Equal-angle annulus sector r0..r1, theta0..theta1 (radians), n_theta x n_r zones; region
+/// "domain"; tags inner, outer, start (theta0 side), end (theta1 side). r0 = 0 makes the
+/// centre ring triangles (no "inner" tag).
+PolygonSoup annulus_sector(double r0, double r1, double theta0, double theta1, int n_theta, int n_r);
+/// Full annulus (tube) r0..r1, n_theta x n_r; region "domain"; tags inner, outer.
+PolygonSoup annulus(double r0, double r1, int n_theta, int n_r);
+
+}  // namespace stagger::meshgen

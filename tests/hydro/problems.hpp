@@ -48,3 +48,43 @@ inline Problem sod_problem(int nx, double t_end = 0.2) {
 }
 
 }  // namespace stagger::testing
+
+namespace stagger::testing {
+
+inline RegionSetup uniform_region(double rho, double p, double vx = 0, double vy = 0) {
+  RegionSetup r;
+  r.region = "domain";
+  r.material = "gas";
+  r.density = constant_field(rho);
+  r.pressure = constant_field(p);
+  r.velocity_x = constant_field(vx);
+  r.velocity_y = constant_field(vy);
+  return r;
+}
+
+// Moves interior points by up to `fraction` of the spacing (deterministic pseudo-random).
+inline void perturb_interior(Mesh& m, double dx, double dy, double fraction, unsigned seed = 1) {
+  std::vector<char> boundary(m.num_points(), 0);
+  for (const auto& tag : m.tags)
+    for (Index p : tag.points) boundary[p] = 1;
+  unsigned state = seed;
+  auto next = [&state] {
+    state = state * 1664525u + 1013904223u;
+    return (state >> 8) / double(1u << 24) * 2 - 1;
+  };
+  for (Index p = 0; p < m.num_points(); ++p) {
+    const double rx = next(), ry = next();
+    if (boundary[p]) continue;
+    m.x[p] += fraction * dx * rx;
+    m.y[p] += fraction * dy * ry;
+  }
+}
+
+inline BoundaryCondition boundary(const char* tag, BoundaryKind kind) {
+  BoundaryCondition bc;
+  bc.tag = tag;
+  bc.kind = kind;
+  return bc;
+}
+
+}  // namespace stagger::testing

@@ -1,0 +1,89 @@
+/// @file mesh.cpp
+/// Small Mesh/PolygonSoup members, zone areas and the mesh quality report.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "stagger/mesh.hpp"
+
+namespace stagger {
+
+std::size_t PolygonSoup::add_polygon(const std::vector<std::int64_t>& points, int region) {
+  if (polygon_begin.empty()) polygon_begin.push_back(0);
+  polygon_points.insert(polygon_points.end(), points.begin(), points.end());
+  polygon_begin.push_back(static_cast<std::int64_t>(polygon_points.size()));
+  polygon_region.push_back(region);
+  return polygon_begin.size() - 2;
+}
+
+bool Mesh::all_quads() const {
+  for (Index z = 0; z < num_zones(); ++z)
+    if (zone_corner_begin[z + 1] - zone_corner_begin[z] != 4) return false;
+  return true;
+}
+
+int Mesh::region_index(const std::string& name) const {
+  const auto it = std::find(region_names.begin(), region_names.end(), name);
+  return it == region_names.end() ? -1 : static_cast<int>(it - region_names.begin());
+}
+
+int Mesh::tag_index(const std::string& name) const {
+  for (std::size_t t = 0; t < tags.size(); ++t)
+    if (tags[t].name == name) return static_cast<int>(t);
+  return -1;
+}
+
+double zone_area(const Mesh& mesh, Index z) {
+  // Shoelace formula: A = 1/2 sum (x_k y_{k+1} - x_{k+1} y_k).
+  const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
+  double sum = 0;
+  for (Index c = begin; c < end; ++c) {
+    const Index a = mesh.corner_point[c];
+    const Index b = mesh.corner_point[c + 1 == end ? begin : c + 1];
+    sum += mesh.x[a] * mesh.y[b] - mesh.x[b] * mesh.y[a];
+  }
+  return 0.5 * sum;
+}
+
+MeshQuality mesh_quality(const Mesh& mesh) {
+  MeshQuality q;
+  if (mesh.num_zones() == 0) return q;
+  q.min_area = std::numeric_limits<double>::max();
+  q.max_area = std::numeric_limits<double>::lowest();
+  q.min_angle_degrees = 360;
+  for (Index z = 0; z < mesh.num_zones(); ++z) {
+    const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
+    const Index n = end - begin;
+    if (n == 3) ++q.triangles;
+    else if (n == 4) ++q.quads;
+    else ++q.other_polygons;
+    const double area = zone_area(mesh, z);
+    q.min_area = std::min(q.min_area, area);
+    q.max_area = std::max(q.max_area, area);
+    double shortest = std::numeric_limits<double>::max(), longest = 0;
+    bool convex = true;
+    for (Index k = 0; k < n; ++k) {
+      const Index prev = mesh.corner_point[begin + (k + n - 1) % n];
+      const Index here = mesh.corner_point[begin + k];
+      const Index next = mesh.corner_point[begin + (k + 1) % n];
+      const double ax = mesh.x[next] - mesh.x[here], ay = mesh.y[next] - mesh.y[here];
+      const double bx = mesh.x[prev] - mesh.x[here], by = mesh.y[prev] - mesh.y[here];
+      const double length = std::hypot(ax, ay);
+      shortest = std::min(shortest, length);
+      longest = std::max(longest, length);
+      // Interior angle of a counter-clockwise polygon, from the next edge round to the
+      // previous one: in (0, 360) degrees; above 180 the zone is not convex.
+      double angle = std::atan2(ax * by - ay * bx, ax * bx + ay * by);
+      if (angle < 0) angle += 2 * std::numbers::pi;
+      const double degrees = angle * 180 / std::numbers::pi;
+      q.min_angle_degrees = std::min(q.min_angle_degrees, degrees);
+      if (degrees > 180) convex = false;
+    }
+    if (!convex) ++q.non_convex_zones;
+    if (shortest > 0) q.max_aspect_ratio = std::max(q.max_aspect_ratio, longest / shortest);
+  }
+  return q;
+}
+
+}  // namespace stagger

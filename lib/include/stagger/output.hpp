@@ -68,9 +68,11 @@ struct RunSummary {
   NamedValues diagnostics;
 };
 
-/// Writes summary.json: scene, zones, points, cycles, t_end, wall_seconds,
-/// zone_cycles_per_second, threads, status, energy {initial, final, boundary_work,
-/// source_work, relative_error}, momentum, errors {...}, diagnostics {...}.
+/// Writes summary.json: scene, zones, points, cycles, t_end (the problem's), time (reached),
+/// dt, dt_limit, wall_seconds, loop_seconds, zone_cycles_per_second (zones x cycles /
+/// loop_seconds), threads, status, energy {initial, final, kinetic, internal, boundary_work,
+/// source_work, relative_error}, momentum [x, y], errors {...}, diagnostics {...}.
+/// Numbers round-trip exactly; non-finite numbers are written as null. docs/output.md.
 void write_summary(const std::string& path, const Simulation& simulation, const RunSummary& summary);
 
 }  // namespace stagger

@@ -81,6 +81,10 @@ struct HydroOptions {
   double dt_max = 0;                 ///< 0 = none
   double dt_min = 0;                 ///< 0 = 1e-8 t_end
   int max_retries = 3;               ///< halvings of dt for a tangled step
+  /// Treat a non-positive median-mesh corner area as tangling (NUMERICS section 5 step 9).
+  /// A zone whose vertex-average centre crosses a reflex vertex (the Sedov hot corner on a
+  /// Cartesian mesh) trips it while its area is still positive; false checks zone areas only.
+  bool check_corner_areas = true;
 };
 
 /// Manufactured-solution source terms (NUMERICS section 9).

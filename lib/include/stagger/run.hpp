@@ -2,7 +2,8 @@
 /// @file run.hpp
 /// The run driver: advances a Simulation to t_end, writing dumps (.vtu + .pvd), history.csv,
 /// checkpoints and summary.json into an output directory. The `stagger run` command and
-/// embedding codes use the same driver.
+/// embedding codes use the same driver. Files (docs/output.md): `<name>_NNNNNN.vtu`,
+/// `<name>.pvd`, `history.csv`, `summary.json`, `<name>.checkpoint`.
 #include <functional>
 #include <string>
 
@@ -37,7 +38,11 @@ struct RunResult {
 /// it throws for unusable output directories).
 RunResult run(Simulation& simulation, const RunControl& control);
 
-/// Resumes from a checkpoint written by run() and continues to t_end.
+/// Resumes from a checkpoint written by run() and continues to t_end: `simulation` must be
+/// built from the same scene (its name is checked, the mesh by Simulation::restore). The
+/// output schedule, .pvd entries and history rows continue where the checkpoint left them,
+/// so the result is bitwise that of an uninterrupted run. Throws stagger::Error for an
+/// unreadable, corrupt or foreign checkpoint.
 RunResult resume(Simulation& simulation, const RunControl& control, const std::string& checkpoint);
 
 }  // namespace stagger

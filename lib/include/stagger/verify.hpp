@@ -254,7 +254,8 @@ private:
 /// and deviatoric_stress_xx (zones); diagnostics elastic_front / plastic_front (largest x where
 /// the point velocity crosses half the elastic jump, resp. the mean of the elastic and plastic
 /// velocities: the middle of a smeared shock), their exact positions elastic_front_exact and
-/// plastic_front_exact, and the exact plateau values.
+/// plastic_front_exact, and elastic_velocity_exact, elastic_pressure_exact,
+/// plastic_pressure_exact, plastic_density_exact.
 Reference piston_reference(const PistonParameters& parameters = {});
 
 /// Howell & Ball's beryllium shell (JCP 175, 2002; VERIFICATION.md problem 5).
@@ -296,8 +297,9 @@ private:
 
 /// Diagnostics inner_radius / outer_radius (mean radius of the points of the mesh tags
 /// "inner" / "outer"), inner_radius_exact / outer_radius_exact, asymmetry (max over the two
-/// tags of (max r - min r) / mean r), kinetic_energy, internal_energy and
-/// kinetic_energy_exact (the analytic one scaled to the simulated sector by its mass).
+/// tags of (max r - min r) / mean r), kinetic_energy, internal_energy,
+/// kinetic_energy_exact (the analytic one scaled to the simulated sector by its mass), and
+/// inner/outer_stopping_radius_exact, stopping_time_exact.
 Reference be_shell_reference(const ShellParameters& parameters = {});
 
 /// Composition B with the JWL fit of the paper's section 5.2, in cm-g-us (pressure in Mbar,

@@ -265,7 +265,7 @@ inline std::int64_t end_state(Simulation::Impl& s, Index z, const ZoneVertices& 
   double ca[kMaxZoneVertices], ax[kMaxZoneVertices], ay[kMaxZoneVertices];
   const double area = polygon_area(v);
   const double smallest_corner = corner_areas(v, ca);
-  if (!(area > 0) || !(smallest_corner > 0)) return failure_code(z, kTangled);
+  if (!(area > 0) || (o.check_corner_areas && !(smallest_corner > 0))) return failure_code(z, kTangled);
   const double rho = s.zone_mass[z] / area;
   eos::PressureSound ps{};
   if (!eos::evaluate(eos, rho, energy, ps)) return failure_code(z, kEosDomain);
@@ -671,7 +671,8 @@ Index Simulation::Impl::find_tangled_zone(double dt) {
     (void)dt;
     const ZoneVertices v = gather_vertices<0>(corner_point.data(), b, n, x_new.data(), y_new.data());
     double ca[kMaxZoneVertices];
-    if (!(polygon_area(v) > 0) || !(corner_areas(v, ca) > 0)) return z;
+    const double smallest_corner = corner_areas(v, ca);
+    if (!(polygon_area(v) > 0) || (problem.options.check_corner_areas && !(smallest_corner > 0))) return z;
   }
   return -1;
 }

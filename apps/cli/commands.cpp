@@ -1,0 +1,253 @@
+// stagger run / check / mesh: thin layers over the public API (scene.hpp, simulation.hpp,
+// run.hpp, output.hpp, meshgen.hpp, mesh.hpp).
+#include "commands.hpp"
+
+#include <omp.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "arguments.hpp"
+#include "stagger/error.hpp"
+#include "stagger/mesh.hpp"
+#include "stagger/meshgen.hpp"
+#include "stagger/output.hpp"
+#include "stagger/run.hpp"
+#include "stagger/scene.hpp"
+#include "stagger/simulation.hpp"
+
+namespace stagger::cli {
+
+const char* const run_help =
+    R"(usage: stagger run SCENE.toml [options]
+
+Loads the scene, runs it to time.end and writes the output directory:
+  summary.json, history.csv, <scene>.pvd with its .vtu dumps, and checkpoints.
+
+options:
+  --out DIR             output directory (default: output/<scene name>)
+  --set KEY=VALUE       override a scene value by its dotted TOML path, e.g.
+                        --set mesh.refine=2 --set numerics.cfl=0.1
+                        --set region[0].density=2 (repeatable; VALUE is a TOML
+                        value: number, true/false, "string", [array]; a bare word
+                        is taken as a string)
+  --threads N           number of OpenMP threads (default: OpenMP's choice)
+  --restart CHECKPOINT  continue from a checkpoint written by an earlier run
+  --quiet               no progress line and no summary (errors still go to stderr)
+  -h, --help            this help
+
+A progress line (cycle, time, dt, ETA) is shown when stderr is a terminal. At the end
+a summary is printed: cycles, final time, zone-cycles per second, the energy audit and
+any error norms. Exit status: 0 if the run reached time.end, 1 otherwise (the reason is
+one line on stderr and in summary.json's "status").
+)";
+
+const char* const check_help =
+    R"(usage: stagger check SCENE.toml [--set KEY=VALUE]...
+
+Parses the scene, meshes it, validates every value and prints the resolved set-up
+(mesh counts and quality, materials, regions, boundary conditions, numerical options,
+outputs). Exit status 0 if the scene is valid; otherwise 1 with the same one-line
+error that 'stagger run' would give.
+
+options:
+  --set KEY=VALUE   as for 'stagger run'
+  -h, --help        this help
+)";
+
+const char* const mesh_help =
+    R"(usage: stagger mesh IN.geo|IN.msh [options]
+
+Meshes a .geo file with gmsh (or reads a .msh), checks and orients it, and prints the
+zone, point, region and tag counts and the mesh quality (areas, aspect ratio, smallest
+angle, non-convex zones).
+
+options:
+  -o, --output OUT.msh|OUT.vtu   write the mesh (MSH 4.1, or VTK with the region zone
+                                 field and one point field per boundary tag)
+  --set NAME=VALUE               override a .geo parameter (like gmsh -setnumber)
+  --triangles accept|subdivide|reject
+                                 what to do with triangles left after recombination
+                                 (default accept)
+  --check                        exit 1 if any zone is non-convex
+  -h, --help                     this help
+)";
+
+namespace {
+
+bool wants_help(const std::vector<std::string>& args) {
+  for (const auto& arg : args)
+    if (arg == "-h" || arg == "--help") return true;
+  return false;
+}
+
+std::string single_positional(const Arguments& arguments, const std::string& command, const std::string& what) {
+  if (arguments.positional().size() != 1)
+    throw UsageError("'" + command + "' needs exactly one " + what + " (got " +
+                     std::to_string(arguments.positional().size()) + "); see '" + command + " --help'");
+  return arguments.positional().front();
+}
+
+std::vector<std::pair<std::string, std::string>> overrides_of(const Arguments& arguments) {
+  std::vector<std::pair<std::string, std::string>> overrides;
+  for (const auto& text : arguments.values("--set")) overrides.push_back(split_assignment("--set", text));
+  return overrides;
+}
+
+std::string number(double value, int precision = 6) {
+  std::ostringstream out;
+  out.precision(precision);
+  out << value;
+  return out.str();
+}
+
+}  // namespace
+
+int run_command(const std::vector<std::string>& args) {
+  if (wants_help(args)) {
+    std::cout << run_help;
+    return 0;
+  }
+  const Arguments arguments("stagger run", args,
+                            {{"--out", "", true, false},
+                             {"--set", "", true, true},
+                             {"--threads", "", true, false},
+                             {"--restart", "", true, false},
+                             {"--quiet", "", false, false}});
+  const std::string scene_path = single_positional(arguments, "stagger run", "scene file");
+  if (arguments.has("--threads")) {
+    const std::string text = arguments.value("--threads");
+    std::size_t used = 0;
+    int threads = 0;
+    try {
+      threads = std::stoi(text, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != text.size() || threads < 1 || threads > 4096)
+      throw UsageError("--threads '" + text + "' is not a positive integer");
+    omp_set_num_threads(threads);
+  }
+  const bool quiet = arguments.flag("--quiet");
+  Scene scene = load_scene(scene_path, overrides_of(arguments));
+  RunControl control = scene.control;
+  if (arguments.has("--out")) control.output_directory = arguments.value("--out");
+  control.progress = !quiet && isatty(STDERR_FILENO) != 0;
+  for (const auto& note : scene.notes)
+    if (!quiet) std::cerr << "stagger: note: " << note << "\n";
+
+  Simulation simulation(std::move(scene.problem));
+  const RunResult result = arguments.has("--restart") ? resume(simulation, control, arguments.value("--restart"))
+                                                      : run(simulation, control);
+  if (!quiet) {
+    const RunSummary& summary = result.summary;
+    const EnergyAudit energy = simulation.energy();
+    const double zone_cycles = static_cast<double>(simulation.mesh().num_zones()) *
+                               static_cast<double>(simulation.cycle());
+    std::cout << "stagger run: " << control.name << (result.completed ? " completed" : " STOPPED") << "\n";
+    std::cout << "  cycles " << simulation.cycle() << ", t = " << number(simulation.time(), 10) << " of "
+              << number(simulation.problem().t_end, 10) << ", last dt " << number(simulation.dt()) << "\n";
+    std::cout << "  zones " << simulation.mesh().num_zones() << ", threads " << summary.threads << ", wall "
+              << number(summary.wall_seconds, 4) << " s, loop " << number(summary.loop_seconds, 4) << " s, "
+              << number(summary.loop_seconds > 0 ? zone_cycles / summary.loop_seconds : 0.0, 4)
+              << " zone-cycles/s\n";
+    std::cout << "  energy: initial " << number(energy.initial, 10) << ", final " << number(energy.total, 10)
+              << ", boundary work " << number(energy.boundary_work) << ", source work " << number(energy.source_work)
+              << ", relative error " << number(energy.relative_error, 3) << "\n";
+    for (const auto& [name, value] : summary.errors) std::cout << "  error " << name << " = " << number(value) << "\n";
+    for (const auto& [name, value] : summary.diagnostics)
+      std::cout << "  diagnostic " << name << " = " << number(value) << "\n";
+    std::cout << "  output: " << control.output_directory << "\n";
+  }
+  if (!result.completed) throw Error("run stopped: " + result.message);
+  return 0;
+}
+
+int check_command(const std::vector<std::string>& args) {
+  if (wants_help(args)) {
+    std::cout << check_help;
+    return 0;
+  }
+  const Arguments arguments("stagger check", args, {{"--set", "", true, true}});
+  const std::string scene_path = single_positional(arguments, "stagger check", "scene file");
+  const Scene scene = load_scene(scene_path, overrides_of(arguments));
+  std::cout << describe(scene);
+  std::cout << "scene is valid\n";
+  return 0;
+}
+
+int mesh_command(const std::vector<std::string>& args) {
+  if (wants_help(args)) {
+    std::cout << mesh_help;
+    return 0;
+  }
+  const Arguments arguments("stagger mesh", args,
+                            {{"--output", "-o", true, false},
+                             {"--set", "", true, true},
+                             {"--triangles", "", true, false},
+                             {"--check", "", false, false}});
+  const std::string input = single_positional(arguments, "stagger mesh", "mesh file (.geo or .msh)");
+  meshgen::GeoOptions options;
+  for (const auto& text : arguments.values("--set")) {
+    const auto [name, value_text] = split_assignment("--set", text);
+    std::size_t used = 0;
+    double value = 0;
+    try {
+      value = std::stod(value_text, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != value_text.size()) throw UsageError("--set " + text + ": '" + value_text + "' is not a number");
+    options.parameters.emplace_back(name, value);
+  }
+  if (arguments.has("--triangles")) {
+    const std::string policy = arguments.value("--triangles");
+    if (policy == "accept") options.triangles = meshgen::TrianglePolicy::accept;
+    else if (policy == "subdivide") options.triangles = meshgen::TrianglePolicy::subdivide;
+    else if (policy == "reject") options.triangles = meshgen::TrianglePolicy::reject;
+    else throw UsageError("--triangles '" + policy + "': use accept, subdivide or reject");
+  }
+  std::string output;
+  if (arguments.has("--output")) {
+    output = arguments.value("--output");
+    const std::string extension = std::filesystem::path(output).extension().string();
+    if (extension != ".msh" && extension != ".vtu")
+      throw UsageError("-o '" + output + "': the output must end in .msh or .vtu");
+  }
+  const PolygonSoup soup = meshgen::read_mesh_file(input, options);
+  MeshBuildReport report;
+  const Mesh mesh = build_mesh(soup, {}, &report);
+  const MeshQuality quality = mesh_quality(mesh);
+
+  std::cout << "mesh " << input << ": " << mesh.num_zones() << " zones (" << quality.quads << " quads, "
+            << quality.triangles << " triangles, " << quality.other_polygons << " other polygons), "
+            << mesh.num_points() << " points\n";
+  std::cout << "regions:";
+  for (Index r = 0; r < mesh.num_regions(); ++r)
+    std::cout << " " << mesh.region_names[r] << " (" << mesh.region_zone_begin[r + 1] - mesh.region_zone_begin[r]
+              << " zones)";
+  std::cout << "\ntags:";
+  for (const auto& tag : mesh.tags) std::cout << " " << tag.name << " (" << tag.edges.size() << " edges)";
+  std::cout << "\nquality: area " << number(quality.min_area) << " .. " << number(quality.max_area)
+            << ", max aspect ratio " << number(quality.max_aspect_ratio) << ", min angle "
+            << number(quality.min_angle_degrees) << " deg, non-convex zones " << quality.non_convex_zones << "\n";
+  if (report.reoriented_zones > 0) std::cout << "note: " << report.reoriented_zones << " zones reoriented to CCW\n";
+  if (report.dropped_points > 0) std::cout << "note: " << report.dropped_points << " unused points dropped\n";
+  for (const auto& note : report.notes) std::cout << "note: " << note << "\n";
+  if (!output.empty()) {
+    if (std::filesystem::path(output).extension() == ".msh")
+      meshgen::write_msh(output, mesh);
+    else
+      write_mesh_vtu(output, mesh);
+    std::cout << "wrote " << output << "\n";
+  }
+  if (arguments.flag("--check") && quality.non_convex_zones > 0)
+    throw Error(input + ": " + std::to_string(quality.non_convex_zones) +
+                " non-convex zone(s); refine or smooth the mesh (see the quality report above)");
+  return 0;
+}
+
+}  // namespace stagger::cli

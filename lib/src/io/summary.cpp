@@ -1,0 +1,63 @@
+// summary.json, written by hand (no JSON dependency): the output contract of issue 2.
+#include <string>
+
+#include "io/text_format.hpp"
+#include "stagger/output.hpp"
+#include "stagger/simulation.hpp"
+
+namespace stagger {
+
+namespace {
+std::string named_values_object(const NamedValues& values, const std::string& indent) {
+  if (values.empty()) return "{}";
+  std::string text = "{\n";
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    text += indent + "  " + io_detail::json_string(values[i].first) + ": " +
+            io_detail::json_number(values[i].second) + (i + 1 < values.size() ? ",\n" : "\n");
+  }
+  return text + indent + "}";
+}
+}  // namespace
+
+void write_summary(const std::string& path, const Simulation& simulation, const RunSummary& summary) {
+  using io_detail::json_number;
+  using io_detail::json_string;
+  const Mesh& mesh = simulation.mesh();
+  const EnergyAudit energy = simulation.energy();
+  const auto momentum = simulation.momentum();
+  const double zones = mesh.num_zones();
+  const double cycles = static_cast<double>(simulation.cycle());
+  // VERIFICATION.md: zones x cycles / time of the time loop alone.
+  const double rate = summary.loop_seconds > 0 ? zones * cycles / summary.loop_seconds : 0.0;
+
+  std::string text = "{\n";
+  text += "  \"scene\": " + json_string(summary.scene) + ",\n";
+  text += "  \"zones\": " + std::to_string(mesh.num_zones()) + ",\n";
+  text += "  \"points\": " + std::to_string(mesh.num_points()) + ",\n";
+  text += "  \"cycles\": " + std::to_string(simulation.cycle()) + ",\n";
+  text += "  \"t_end\": " + json_number(simulation.problem().t_end) + ",\n";
+  text += "  \"time\": " + json_number(simulation.time()) + ",\n";
+  text += "  \"dt\": " + json_number(simulation.dt()) + ",\n";
+  text += "  \"dt_limit\": " + json_string(simulation.dt_limit()) + ",\n";
+  text += "  \"wall_seconds\": " + json_number(summary.wall_seconds) + ",\n";
+  text += "  \"loop_seconds\": " + json_number(summary.loop_seconds) + ",\n";
+  text += "  \"zone_cycles_per_second\": " + json_number(rate) + ",\n";
+  text += "  \"threads\": " + std::to_string(summary.threads) + ",\n";
+  text += "  \"status\": " + json_string(summary.status) + ",\n";
+  text += "  \"energy\": {\n";
+  text += "    \"initial\": " + json_number(energy.initial) + ",\n";
+  text += "    \"final\": " + json_number(energy.total) + ",\n";
+  text += "    \"kinetic\": " + json_number(energy.kinetic) + ",\n";
+  text += "    \"internal\": " + json_number(energy.internal) + ",\n";
+  text += "    \"boundary_work\": " + json_number(energy.boundary_work) + ",\n";
+  text += "    \"source_work\": " + json_number(energy.source_work) + ",\n";
+  text += "    \"relative_error\": " + json_number(energy.relative_error) + "\n";
+  text += "  },\n";
+  text += "  \"momentum\": [" + json_number(momentum[0]) + ", " + json_number(momentum[1]) + "],\n";
+  text += "  \"errors\": " + named_values_object(summary.errors, "  ") + ",\n";
+  text += "  \"diagnostics\": " + named_values_object(summary.diagnostics, "  ") + "\n";
+  text += "}\n";
+  write_file_atomically(path, text);
+}
+
+}  // namespace stagger

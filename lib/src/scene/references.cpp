@@ -1,0 +1,169 @@
+// [sources] and [verification]: manufactured sources and exact references from verify.hpp.
+// Material constants come from the scene's [[material]] (so that --set changes both the
+// run and its reference); the remaining parameters are keys of the table, with the
+// defaults of verify.hpp.
+#include <cmath>
+
+#include "scene_internal.hpp"
+#include "stagger/error.hpp"
+#include "stagger/verify.hpp"
+
+namespace stagger::scene_detail {
+
+namespace {
+
+GasState read_gas_state(Section& parent, const char* key) {
+  auto table = parent.subtable(key);
+  if (!table)
+    parent.fail(key, "missing", std::string("write ") + key + " = { density = 1.0, velocity = 0.0, pressure = 1.0 }");
+  GasState state;
+  state.density = table->number("density");
+  state.velocity = table->number("velocity", 0.0);
+  state.pressure = table->number("pressure");
+  if (!(state.density > 0)) table->fail("density", "must be > 0");
+  if (!(state.pressure >= 0)) table->fail("pressure", "must be >= 0");
+  table->finish();
+  return state;
+}
+
+// The material a reference is about: `material = "name"`, or the first [[material]].
+const Material& reference_material(Section& section, const Problem& problem) {
+  if (section.has("material")) {
+    const std::string name = section.string("material");
+    for (const auto& material : problem.materials)
+      if (material.name == name) return material;
+    std::string names;
+    for (const auto& material : problem.materials) names += (names.empty() ? "" : ", ") + material.name;
+    section.fail("material", "unknown material '" + name + "'", "materials: " + names);
+  }
+  return problem.materials.front();
+}
+
+template <class Eos>
+const Eos& material_eos(Section& section, const Material& material, const char* eos_name) {
+  const auto* eos = std::get_if<Eos>(&material.eos);
+  if (eos == nullptr)
+    section.fail("reference", "this reference needs material '" + material.name + "' to use eos = \"" + eos_name + "\"");
+  return *eos;
+}
+
+double positive(Section& section, const char* key, double fallback) {
+  const double value = section.number(key, fallback);
+  if (!(value > 0)) section.fail(key, "must be > 0");
+  return value;
+}
+
+// Ideal-gas gamma: the `gamma` key, or the reference material's.
+double gas_gamma(Section& section, const Problem& problem) {
+  const Material& material = reference_material(section, problem);
+  const double fallback = std::get_if<IdealGas>(&material.eos) ? std::get<IdealGas>(material.eos).gamma : 0.0;
+  if (!section.has("gamma") && fallback == 0.0)
+    section.fail("gamma", "missing (the material is not an ideal gas)", "write gamma = 1.4");
+  const double gamma = section.number("gamma", fallback);
+  if (!(gamma > 1)) section.fail("gamma", "must be > 1");
+  return gamma;
+}
+
+AccuracyParameters read_accuracy_parameters(Section& section, const Problem& problem) {
+  AccuracyParameters parameters;
+  parameters.eos = material_eos<MieGruneisen>(section, reference_material(section, problem), "mie_gruneisen");
+  parameters.velocity = section.number("velocity", parameters.velocity);
+  parameters.s1 = section.number("s1", parameters.s1);
+  parameters.energy = section.number("energy", parameters.energy);
+  parameters.amplitude = section.number("amplitude", parameters.amplitude);
+  return parameters;
+}
+
+}  // namespace
+
+SourceContext read_sources_section(Section& section, Problem& problem) {
+  SourceContext context;
+  context.kind = section.choice("kind", {"taylor_green", "accuracy"});
+  if (context.kind == "taylor_green") {
+    // The energy source of verify.hpp is derived for gamma = 5/3.
+    for (const auto& material : problem.materials) {
+      const auto* gas = std::get_if<IdealGas>(&material.eos);
+      if (gas == nullptr || std::abs(gas->gamma - 5.0 / 3.0) > 1e-12)
+        section.fail("kind", "the Taylor-Green source term assumes an ideal gas with gamma = 5/3 (material '" +
+                                 material.name + "' differs)");
+    }
+    problem.sources = taylor_green_sources();
+  } else {
+    context.accuracy = read_accuracy_parameters(section, problem);
+    problem.sources = accuracy_sources(*context.accuracy);
+  }
+  section.finish();
+  return context;
+}
+
+void read_verification_section(Section& section, const Problem& problem, const SourceContext& sources,
+                               RunControl& control) {
+  const std::string reference = section.choice(
+      "reference", {"shock_tube", "noh", "sedov", "saltzman", "taylor_green", "piston", "be_shell", "detonation", "accuracy"});
+  if (reference == "shock_tube") {
+    const GasState left = read_gas_state(section, "left"), right = read_gas_state(section, "right");
+    const double gamma = gas_gamma(section, problem);
+    const double x0 = section.number("x0");
+    control.reference = shock_tube_reference(left, right, gamma, x0);
+  } else if (reference == "noh") {
+    const double gamma = gas_gamma(section, problem);
+    control.reference = noh_reference(gamma, positive(section, "density", 1.0), positive(section, "speed", 1.0));
+  } else if (reference == "sedov") {
+    const double gamma = gas_gamma(section, problem);
+    double deposited = 0;
+    for (const auto& deposit : problem.deposits) deposited += deposit.energy;
+    if (!section.has("energy") && deposited == 0)
+      section.fail("energy", "missing (the scene has no [[deposit]])", "write energy = 0.244816");
+    control.reference = sedov_reference(gamma, positive(section, "density", 1.0), positive(section, "energy", deposited));
+  } else if (reference == "saltzman") {
+    const double gamma = gas_gamma(section, problem);
+    control.reference =
+        saltzman_reference(positive(section, "piston_speed", 1.0), gamma, positive(section, "density", 1.0));
+  } else if (reference == "taylor_green") {
+    control.reference = taylor_green_reference(positive(section, "p0", 1.0));
+  } else if (reference == "piston") {
+    const Material& material = reference_material(section, problem);
+    PistonParameters parameters;
+    parameters.eos = material_eos<MieGruneisen>(section, material, "mie_gruneisen");
+    if (!material.strength) section.fail("reference", "the piston needs material '" + material.name + "' with strength");
+    parameters.shear_modulus = material.strength->shear_modulus;
+    parameters.yield_stress = material.strength->yield_stress;
+    parameters.initial_pressure = section.number("initial_pressure", parameters.initial_pressure);
+    parameters.piston_velocity = positive(section, "piston_velocity", parameters.piston_velocity);
+    try {
+      control.reference = piston_reference(parameters);
+    } catch (const Error& failure) {
+      section.fail("reference", failure.what());
+    }
+  } else if (reference == "be_shell") {
+    const Material& material = reference_material(section, problem);
+    ShellParameters parameters;
+    parameters.density = material_eos<MieGruneisen>(section, material, "mie_gruneisen").rho0;
+    if (!material.strength) section.fail("reference", "the shell needs material '" + material.name + "' with strength");
+    parameters.yield_stress = material.strength->yield_stress;
+    parameters.inner_radius = positive(section, "inner_radius", parameters.inner_radius);
+    parameters.outer_radius = positive(section, "outer_radius", parameters.outer_radius);
+    if (!(parameters.outer_radius > parameters.inner_radius)) section.fail("outer_radius", "must exceed inner_radius");
+    parameters.velocity = positive(section, "velocity", parameters.velocity);
+    control.reference = be_shell_reference(parameters);
+  } else if (reference == "detonation") {
+    const Material& material = reference_material(section, problem);
+    DetonationParameters parameters;
+    parameters.eos = material_eos<Jwl>(section, material, "jwl");
+    if (material.burn) parameters.nominal_speed = material.burn->detonation_speed;
+    parameters.energy_per_volume = positive(section, "energy_per_volume", parameters.energy_per_volume);
+    parameters.x0 = section.number("x0", parameters.x0);
+    try {
+      control.reference = detonation_reference(parameters);
+    } catch (const Error& failure) {
+      section.fail("reference", failure.what());
+    }
+  } else {
+    if (!sources.accuracy)
+      section.fail("reference", "the accuracy reference needs [sources] kind = \"accuracy\" (its parameters are read there)");
+    control.reference = accuracy_reference(*sources.accuracy);
+  }
+  section.finish();
+}
+
+}  // namespace stagger::scene_detail

@@ -1,0 +1,448 @@
+// Scene files (TOML) -> Problem + RunControl. The reader is a translation into the public
+// API, nothing more: every value lands in a field of problem.hpp or run.hpp.
+#include "stagger/scene.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "overrides.hpp"
+#include "scene_internal.hpp"
+#include "stagger/error.hpp"
+
+namespace stagger {
+
+namespace scene_detail {
+namespace {
+
+std::string join(const std::vector<std::string>& names) {
+  std::string list;
+  for (const auto& name : names) list += (list.empty() ? "" : ", ") + name;
+  return list.empty() ? "(none)" : list;
+}
+
+std::string point_text(double x, double y) {
+  std::ostringstream out;
+  out.precision(6);
+  out << "(" << x << ", " << y << ")";
+  return out.str();
+}
+
+// Checks a value at `points`; a non-finite value is an error naming the point.
+void check_finite(Section& section, const Section::ValueOrExpression& value, const std::string& key_label,
+                  const std::vector<std::array<double, 2>>& points,
+                  const std::function<bool(double)>& in_range = nullptr, const std::string& range_text = {}) {
+  for (const auto& point : points) {
+    const double v = value.constant ? *value.constant : (*value.expression)(point[0], point[1]);
+    if (!std::isfinite(v))
+      section.fail_at(value.node, key_label, "evaluates to " + std::to_string(v) + " at " + point_text(point[0], point[1]),
+                      "guard divisions and roots, e.g. with ?:");
+    if (in_range && !in_range(v))
+      section.fail_at(value.node, key_label,
+                      "must be " + range_text + ", got " + std::to_string(v) + " at " + point_text(point[0], point[1]));
+    if (value.constant) break;  // a constant needs one check
+  }
+}
+
+SpaceFunction to_space_function(const Section::ValueOrExpression& value) {
+  return value.constant ? constant_field(*value.constant) : space_function(*value.expression);
+}
+
+TimeFunction to_time_function(const Section::ValueOrExpression& value) {
+  return value.constant ? constant_in_time(*value.constant) : time_function(*value.expression);
+}
+
+void read_scene_section(Section& root, const std::string& file, Problem& problem, RunControl& control) {
+  std::string name = std::filesystem::path(file).stem().string();
+  if (auto scene = root.subtable("scene")) {
+    name = scene->string("name", name);
+    if (name.empty() || name.find_first_of("/\\ ") != std::string::npos)
+      scene->fail("name", "'" + name + "' is not usable as a file name", "use letters, digits, '_' and '-'");
+    scene->string("description", "");
+    scene->string("units", "");
+    scene->finish();
+  }
+  problem.name = name;
+  control.name = name;
+  control.output_directory = "output/" + name;
+}
+
+Material read_material(Section& section) {
+  Material material;
+  material.name = section.string("name");
+  auto positive = [&](const char* key) {
+    const double value = section.number(key);
+    if (!(value > 0)) section.fail(key, "must be > 0, got " + std::to_string(value));
+    return value;
+  };
+  const std::string eos = section.choice("eos", {"ideal_gas", "mie_gruneisen", "jwl"});
+  if (eos == "ideal_gas") {
+    IdealGas gas;
+    gas.gamma = section.number("gamma");
+    if (!(gas.gamma > 1)) section.fail("gamma", "must be > 1, got " + std::to_string(gas.gamma));
+    material.eos = gas;
+  } else if (eos == "mie_gruneisen") {
+    MieGruneisen mg;
+    mg.rho0 = positive("rho0");
+    mg.a0 = positive("a0");
+    mg.gamma0 = section.number("gamma0");
+    mg.s = section.number("s");
+    if (!(mg.gamma0 >= 0)) section.fail("gamma0", "must be >= 0");
+    material.eos = mg;
+  } else {
+    Jwl jwl;
+    jwl.A = section.number("A");
+    jwl.B = section.number("B");
+    jwl.R1 = positive("R1");
+    jwl.R2 = positive("R2");
+    jwl.omega = positive("omega");
+    jwl.rho0 = positive("rho0");
+    material.eos = jwl;
+  }
+  if (section.has("min_energy")) material.min_energy = section.number("min_energy");
+  if (auto strength = section.subtable("strength")) {
+    Strength s;
+    s.shear_modulus = strength->number("shear_modulus");
+    s.yield_stress = strength->number("yield_stress");
+    if (!(s.shear_modulus >= 0)) strength->fail("shear_modulus", "must be >= 0");
+    if (!(s.yield_stress > 0)) strength->fail("yield_stress", "must be > 0", "use a very large value for an elastic material");
+    strength->finish();
+    material.strength = s;
+  }
+  if (auto burn_section = section.subtable("burn")) {
+    Burn burn;
+    burn.detonation_speed = burn_section->number("detonation_speed");
+    if (!(burn.detonation_speed > 0)) burn_section->fail("detonation_speed", "must be > 0");
+    if (const toml::node* points = burn_section->find("points")) {
+      const auto* array = points->as_array();
+      if (array == nullptr) burn_section->fail("points", "expected an array of [x, y] pairs", "write points = [[0.0, 0.0]]");
+      for (const toml::node& element : *array) {
+        const auto* pair = element.as_array();
+        if (pair == nullptr || pair->size() != 2 || !pair->get(0)->is_number() || !pair->get(1)->is_number())
+          burn_section->fail_at(&element, burn_section->key_path("points"), "each detonation point is [x, y]");
+        burn.points.push_back({*pair->get(0)->value<double>(), *pair->get(1)->value<double>()});
+      }
+    }
+    if (burn_section->has("plane")) {
+      const auto plane = burn_section->numbers("plane", 4);
+      if (std::hypot(plane[2], plane[3]) == 0) burn_section->fail("plane", "the normal (nx, ny) is zero");
+      burn.plane = std::array<double, 4>{plane[0], plane[1], plane[2], plane[3]};
+    }
+    if (burn.points.empty() && !burn.plane)
+      burn_section->fail("points", "missing: a burn needs detonation points or a plane",
+                         "write points = [[x, y]] or plane = [x0, y0, nx, ny]");
+    burn.time_offset = burn_section->number("time_offset", 0.0);
+    burn.beta_burn = burn_section->boolean("beta_burn", false);
+    burn.cj_relative_volume = burn_section->number("cj_relative_volume", 0.0);
+    if (burn.beta_burn && !(burn.cj_relative_volume > 0 && burn.cj_relative_volume < 1))
+      burn_section->fail("cj_relative_volume", "beta_burn needs 0 < cj_relative_volume < 1");
+    burn_section->finish();
+    material.burn = burn;
+  }
+  section.finish();
+  return material;
+}
+
+void read_regions(Section& root, const Mesh& mesh, Problem& problem) {
+  std::map<std::string, std::size_t> material_index;
+  std::vector<std::string> material_names;
+  for (std::size_t m = 0; m < problem.materials.size(); ++m) {
+    material_index[problem.materials[m].name] = m;
+    material_names.push_back(problem.materials[m].name);
+  }
+  auto sections = root.table_array("region");
+  if (sections.empty()) root.fail("region", "missing: no [[region]]", "add one per mesh region: " + join(mesh.region_names));
+  std::set<std::string> covered;
+  const std::vector<std::string> xy{"x", "y"};
+  for (auto& section : sections) {
+    RegionSetup setup;
+    setup.region = section.string("name");
+    const int region = mesh.region_index(setup.region);
+    if (region < 0)
+      section.fail("name", "the mesh has no region '" + setup.region + "'", "mesh regions: " + join(mesh.region_names));
+    if (!covered.insert(setup.region).second) section.fail("name", "region '" + setup.region + "' is set up twice");
+    setup.material = section.string("material");
+    const auto found = material_index.find(setup.material);
+    if (found == material_index.end())
+      section.fail("material", "unknown material '" + setup.material + "'", "materials: " + join(material_names));
+    const Material& material = problem.materials[found->second];
+    const bool ideal_gas = std::holds_alternative<IdealGas>(material.eos);
+
+    std::vector<std::array<double, 2>> centres, points;
+    std::set<Index> point_set;
+    for (Index z = mesh.region_zone_begin[region]; z < mesh.region_zone_begin[region + 1]; ++z) {
+      centres.push_back(zone_centre(mesh, z));
+      for (Index c = mesh.zone_corner_begin[z]; c < mesh.zone_corner_begin[z + 1]; ++c)
+        point_set.insert(mesh.corner_point[c]);
+    }
+    for (Index p : point_set) points.push_back({mesh.x[p], mesh.y[p]});
+
+    const auto density = section.value_or_expression("density", xy);
+    check_finite(section, density, section.key_path("density"), centres, [](double v) { return v > 0; }, "> 0");
+    setup.density = to_space_function(density);
+    const bool has_pressure = section.has("pressure"), has_energy = section.has("specific_internal_energy");
+    if (has_pressure == has_energy)
+      section.fail(has_pressure ? "specific_internal_energy" : "pressure",
+                   has_pressure ? "give pressure or specific_internal_energy, not both"
+                                : "missing: give pressure or specific_internal_energy");
+    const char* thermal_key = has_pressure ? "pressure" : "specific_internal_energy";
+    const auto thermal = section.value_or_expression(thermal_key, xy);
+    if (ideal_gas)
+      check_finite(section, thermal, section.key_path(thermal_key), centres, [](double v) { return v >= 0; },
+                   ">= 0 for an ideal gas");
+    else
+      check_finite(section, thermal, section.key_path(thermal_key), centres);
+    (has_pressure ? setup.pressure : setup.specific_internal_energy) = to_space_function(thermal);
+
+    if (const toml::node* velocity = section.find("velocity")) {
+      const auto* array = velocity->as_array();
+      if (array == nullptr || array->size() != 2)
+        section.fail("velocity", "expected [vx, vy] (numbers or expressions of x, y)");
+      const char* labels[2] = {"[0]", "[1]"};
+      for (std::size_t k = 0; k < 2; ++k) {
+        const std::string label = section.key_path("velocity") + labels[k];
+        const auto component = section.value_or_expression(*array->get(k), label, xy);
+        check_finite(section, component, label, points);
+        (k == 0 ? setup.velocity_x : setup.velocity_y) = to_space_function(component);
+      }
+    }
+    if (const toml::node* stress = section.find("stress")) {
+      if (!material.strength)
+        section.fail("stress", "material '" + material.name + "' has no [material.strength]",
+                     "remove the stress or give the material a strength");
+      const auto* array = stress->as_array();
+      if (array == nullptr || array->size() != 3)
+        section.fail("stress", "expected [sxx, syy, sxy] (numbers or expressions of x, y)");
+      const char* labels[3] = {"[0]", "[1]", "[2]"};
+      SpaceFunction* targets[3] = {&setup.stress_xx, &setup.stress_yy, &setup.stress_xy};
+      for (std::size_t k = 0; k < 3; ++k) {
+        const std::string label = section.key_path("stress") + labels[k];
+        const auto component = section.value_or_expression(*array->get(k), label, xy);
+        check_finite(section, component, label, centres);
+        *targets[k] = to_space_function(component);
+      }
+    }
+    section.finish();
+    problem.regions.push_back(std::move(setup));
+  }
+  std::vector<std::string> uncovered;
+  for (const auto& region : mesh.region_names)
+    if (covered.count(region) == 0) uncovered.push_back(region);
+  if (!uncovered.empty())
+    root.fail("region", "mesh region(s) " + join(uncovered) + " have no [[region]]",
+              "add a [[region]] with name, material and initial state for each");
+}
+
+void read_boundaries(Section& root, const Mesh& mesh, double t_end, Problem& problem) {
+  std::vector<std::string> tag_names;
+  for (const auto& tag : mesh.tags) tag_names.push_back(tag.name);
+  std::map<std::string, std::string> covered;  // tag -> where it was set
+  auto claim = [&](Section& section, const char* key, const std::string& tag) {
+    if (mesh.tag_index(tag) < 0)
+      section.fail(key, "the mesh has no boundary tag '" + tag + "'", "mesh tags: " + join(tag_names));
+    if (!covered.emplace(tag, section.path()).second)
+      section.fail(key, "tag '" + tag + "' already has a condition (" + covered[tag] + ")");
+  };
+  std::vector<double> sample_times;
+  for (int i = 0; i <= 20; ++i) sample_times.push_back(t_end * i / 20.0);
+  auto check_time = [&](Section& section, const Section::ValueOrExpression& value, const std::string& label) {
+    if (value.constant) return;
+    for (double t : sample_times)
+      if (!std::isfinite((*value.expression)(t)))
+        section.fail_at(value.node, label, "not finite at t = " + std::to_string(t), "guard the expression");
+  };
+
+  for (auto& section : root.table_array("boundary")) {
+    std::vector<std::string> tags;
+    const char* tag_key = "tags";
+    if (section.has("tags") && section.has("tag")) section.fail("tag", "give tag or tags, not both");
+    if (section.has("tag")) {
+      tags.push_back(section.string("tag"));
+      tag_key = "tag";
+    } else {
+      tags = section.strings("tags");
+      if (tags.empty()) section.fail("tags", "lists no tag", "mesh tags: " + join(tag_names));
+    }
+    for (const auto& tag : tags) claim(section, tag_key, tag);
+    BoundaryCondition condition;
+    const std::string type = section.choice("type", {"wall", "velocity", "free", "pressure", "periodic"});
+    if (type == "wall") {
+      condition.kind = BoundaryKind::wall;
+    } else if (type == "free") {
+      condition.kind = BoundaryKind::free;
+    } else if (type == "velocity") {
+      condition.kind = BoundaryKind::velocity;
+      const toml::node* velocity = section.find("velocity");
+      const auto* array = velocity ? velocity->as_array() : nullptr;
+      if (array == nullptr || array->size() != 2)
+        section.fail("velocity", velocity ? "expected [ux, uy] (numbers or expressions of t)" : "missing",
+                     "write velocity = [1.0, 0.0]");
+      for (std::size_t k = 0; k < 2; ++k) {
+        const std::string label = section.key_path("velocity") + (k == 0 ? "[0]" : "[1]");
+        const auto component = section.value_or_expression(*array->get(k), label, {"t"});
+        check_time(section, component, label);
+        (k == 0 ? condition.velocity_x : condition.velocity_y) = to_time_function(component);
+      }
+    } else if (type == "pressure") {
+      condition.kind = BoundaryKind::pressure;
+      const auto pressure = section.value_or_expression("pressure", {"t"});
+      check_time(section, pressure, section.key_path("pressure"));
+      condition.pressure = to_time_function(pressure);
+    } else {
+      condition.kind = BoundaryKind::periodic;
+      if (tags.size() != 1) section.fail(tag_key, "a periodic condition pairs one tag with its partner");
+      condition.partner = section.string("partner");
+      claim(section, "partner", condition.partner);
+    }
+    section.finish();
+    for (const auto& tag : tags) {
+      condition.tag = tag;
+      problem.boundaries.push_back(condition);
+    }
+  }
+  std::vector<std::string> uncovered;
+  for (const auto& tag : tag_names)
+    if (covered.count(tag) == 0) uncovered.push_back(tag);
+  if (!uncovered.empty())
+    root.fail("boundary", "mesh tag(s) " + join(uncovered) + " have no [[boundary]]",
+              "add one (type = \"free\" for a traction-free surface)");
+}
+
+void read_numerics(Section& section, HydroOptions& options) {
+  auto in_range = [&](const char* key, double fallback, double low, double high, bool low_open, bool high_open) {
+    const double value = section.number(key, fallback);
+    const bool ok = (low_open ? value > low : value >= low) && (high_open ? value < high : value <= high);
+    if (!ok) {
+      std::ostringstream range;
+      range << (low_open ? "(" : "[") << low << ", " << (std::isinf(high) ? "inf" : std::to_string(high))
+            << (high_open ? ")" : "]");
+      section.fail(key, "must be in " + range.str() + ", got " + std::to_string(value));
+    }
+    return value;
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  options.cfl = in_range("cfl", options.cfl, 0, 1, true, true);
+  options.viscosity = section.choice("viscosity", {"bulk", "edge"}, "bulk") == "edge" ? Viscosity::edge : Viscosity::bulk;
+  options.q1 = in_range("q1", options.q1, 0, inf, false, true);
+  options.q2 = in_range("q2", options.q2, 0, inf, false, true);
+  options.edge_c1 = in_range("edge_c1", options.edge_c1, 0, inf, false, true);
+  options.edge_c2 = in_range("edge_c2", options.edge_c2, 0, inf, false, true);
+  options.edge_limiter = section.boolean("edge_limiter", options.edge_limiter);
+  options.hourglass = section.choice("hourglass", {"gamma", "flanagan_belytschko"}, "gamma") == "gamma"
+                          ? Hourglass::gamma
+                          : Hourglass::flanagan_belytschko;
+  options.hourglass_coefficient = in_range("hourglass_coefficient", options.hourglass_coefficient, 0, inf, false, true);
+  options.stress_update =
+      section.choice("stress_update", {"rate", "objective"}, "rate") == "rate" ? StressUpdate::rate : StressUpdate::objective;
+  options.fresh_predictor = section.boolean("fresh_predictor", options.fresh_predictor);
+  options.volume_limit = in_range("volume_limit", options.volume_limit, 0, 1, true, false);
+  options.dt_growth = in_range("dt_growth", options.dt_growth, 1, inf, false, true);
+  options.dt_init = in_range("dt_init", options.dt_init, 0, inf, false, true);
+  options.dt_max = in_range("dt_max", options.dt_max, 0, inf, false, true);
+  options.dt_min = in_range("dt_min", options.dt_min, 0, inf, false, true);
+  const long retries = section.integer("max_retries", options.max_retries);
+  if (retries < 0 || retries > 60) section.fail("max_retries", "must be in [0, 60]");
+  options.max_retries = static_cast<int>(retries);
+  options.check_corner_areas = section.boolean("check_corner_areas", options.check_corner_areas);
+  section.finish();
+}
+
+void read_output(Section& section, RunControl& control) {
+  control.dump_interval = section.number("dump_interval", control.dump_interval);
+  if (!(control.dump_interval >= 0)) section.fail("dump_interval", "must be >= 0 (0: first and last only)");
+  control.dumps = section.boolean("dumps", control.dumps);
+  const long every = section.integer("history_every", control.history_every);
+  if (every < 1 || every > 1000000000) section.fail("history_every", "must be >= 1");
+  control.history_every = static_cast<int>(every);
+  control.checkpoint_every_cycles = section.integer("checkpoint_every_cycles", control.checkpoint_every_cycles);
+  if (control.checkpoint_every_cycles < 0) section.fail("checkpoint_every_cycles", "must be >= 0 (0: never)");
+  control.checkpoint_every_seconds = section.number("checkpoint_every_seconds", control.checkpoint_every_seconds);
+  if (!(control.checkpoint_every_seconds >= 0)) section.fail("checkpoint_every_seconds", "must be >= 0 (0: never)");
+  control.checkpoints = section.boolean("checkpoints", control.checkpoints);
+  section.finish();
+}
+
+}  // namespace
+}  // namespace scene_detail
+
+Scene load_scene(const std::string& path, const std::vector<std::pair<std::string, std::string>>& overrides) {
+  using namespace scene_detail;
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error))
+    throw Error(path + ": scene file not found; check the path");
+  toml::table document;
+  try {
+    document = toml::parse_file(path);
+  } catch (const toml::parse_error& failure) {
+    const auto& begin = failure.source().begin;
+    throw Error(path + ":" + std::to_string(begin.line) + ":" + std::to_string(begin.column) +
+                ": malformed TOML: " + std::string(failure.description()) + "; fix the syntax (see docs/scenes.md)");
+  }
+  for (const auto& [key, value] : overrides) apply_override(document, key, value);
+
+  Scene scene;
+  scene.file = path;
+  Problem& problem = scene.problem;
+  RunControl& control = scene.control;
+  Section root(path, document, "");
+  // Reject unknown top-level keys before the (possibly slow) meshing.
+  for (const char* key : {"scene", "time", "mesh", "material", "region", "boundary", "deposit", "numerics", "output",
+                          "sources", "verification"})
+    root.find(key);
+  root.finish();
+
+  read_scene_section(root, path, problem, control);
+
+  auto time = root.subtable("time");
+  if (!time) root.fail("time", "missing: every scene needs [time] with end", "add [time] end = ...");
+  problem.t_end = time->number("end");
+  if (!(problem.t_end > 0)) time->fail("end", "must be > 0, got " + std::to_string(problem.t_end));
+  time->finish();
+
+  auto mesh = root.subtable("mesh");
+  if (!mesh) root.fail("mesh", "missing: every scene needs a [mesh]", "add [mesh] with file or generator");
+  problem.mesh = read_mesh_section(*mesh, path, scene.notes);
+
+  auto materials = root.table_array("material");
+  if (materials.empty()) root.fail("material", "missing: no [[material]]", "add one [[material]] per material");
+  for (auto& section : materials) {
+    Material material = read_material(section);
+    for (const auto& other : problem.materials)
+      if (other.name == material.name) section.fail("name", "material '" + material.name + "' is defined twice");
+    problem.materials.push_back(std::move(material));
+  }
+
+  read_regions(root, problem.mesh, problem);
+  read_boundaries(root, problem.mesh, problem.t_end, problem);
+
+  for (auto& section : root.table_array("deposit")) {
+    EnergyDeposit deposit;
+    deposit.x = section.number("x");
+    deposit.y = section.number("y");
+    deposit.energy = section.number("energy");
+    if (!(deposit.energy > 0)) section.fail("energy", "must be > 0");
+    section.finish();
+    problem.deposits.push_back(deposit);
+  }
+
+  if (auto numerics = root.subtable("numerics")) read_numerics(*numerics, problem.options);
+  if (auto output = root.subtable("output")) read_output(*output, control);
+  SourceContext source_context;
+  if (auto sources = root.subtable("sources")) source_context = read_sources_section(*sources, problem);
+  if (auto verification = root.subtable("verification"))
+    read_verification_section(*verification, problem, source_context, control);
+  root.finish();
+
+  try {
+    problem.validate();
+  } catch (const Error& failure) {
+    throw Error(path + ": " + failure.what());
+  }
+  return scene;
+}
+
+}  // namespace stagger

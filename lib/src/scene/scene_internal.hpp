@@ -1,0 +1,31 @@
+#pragma once
+// Pieces of the scene reader shared between its translation units.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "stagger/scene.hpp"
+#include "stagger/verify.hpp"
+#include "toml_reader.hpp"
+
+namespace stagger::scene_detail {
+
+/// Reads [mesh], meshes it (meshgen + build_mesh) and returns the mesh; notes are appended.
+Mesh read_mesh_section(Section& mesh, const std::string& scene_file, std::vector<std::string>& notes);
+
+/// What [sources] resolved that [verification] reuses (the same manufactured solution).
+struct SourceContext {
+  std::string kind;                              ///< "" if no [sources]
+  std::optional<AccuracyParameters> accuracy;
+};
+
+/// Reads [sources] into problem.sources.
+SourceContext read_sources_section(Section& sources, Problem& problem);
+/// Reads [verification] into control.reference.
+void read_verification_section(Section& verification, const Problem& problem, const SourceContext& sources,
+                               RunControl& control);
+
+/// Zone centre (vertex average, NUMERICS section 1).
+std::array<double, 2> zone_centre(const Mesh& mesh, Index zone);
+
+}  // namespace stagger::scene_detail

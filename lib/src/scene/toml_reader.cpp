@@ -1,0 +1,220 @@
+#include "toml_reader.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "stagger/error.hpp"
+
+namespace stagger::scene_detail {
+
+std::string where(const std::string& file, const toml::node* node, const toml::node* fallback) {
+  for (const toml::node* candidate : {node, fallback}) {
+    if (candidate == nullptr) continue;
+    const auto& source = candidate->source();
+    if (source.path && source.path->rfind("--set", 0) == 0) return *source.path;
+    if (source.begin.line > 0) return file + ":" + std::to_string(source.begin.line);
+  }
+  return file;
+}
+
+std::string type_name(const toml::node& node) {
+  switch (node.type()) {
+    case toml::node_type::table: return "a table";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a number";
+    case toml::node_type::boolean: return "a boolean";
+    default: return "a date/time";
+  }
+}
+
+Section::Section(std::string file, const toml::table& table, std::string path)
+    : file_(std::move(file)), table_(&table), path_(std::move(path)) {}
+
+std::string Section::key_path(std::string_view key) const {
+  return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+}
+
+const toml::node* Section::find(std::string_view key) {
+  known_.emplace(key);
+  return table_->get(key);
+}
+
+void Section::fail_at(const toml::node* node, const std::string& key_label, const std::string& what,
+                      const std::string& todo) const {
+  std::string message = where(file_, node, table_) + ": key '" + key_label + "': " + what;
+  if (!todo.empty()) message += "; " + todo;
+  throw Error(message);
+}
+
+void Section::fail(std::string_view key, const std::string& what, const std::string& todo) const {
+  fail_at(table_->get(key), key_path(key), what, todo);
+}
+
+const toml::node& Section::require(std::string_view key) {
+  const toml::node* node = find(key);
+  if (node == nullptr) {
+    std::string section = path_.empty() ? "the top level" : "[" + path_ + "]";
+    fail_at(nullptr, key_path(key), "missing", "add it to " + section + " (see docs/scenes.md)");
+  }
+  return *node;
+}
+
+namespace {
+std::string format_number(double value) {
+  std::ostringstream out;
+  out.precision(17);
+  out << value;
+  return out.str();
+}
+}  // namespace
+
+double Section::number(std::string_view key) {
+  const toml::node& node = require(key);
+  if (!node.is_number())
+    fail(key, "expected a number, got " + type_name(node), "write e.g. " + std::string(key) + " = 1.0");
+  const double value = *node.value<double>();
+  if (!std::isfinite(value)) fail(key, "must be finite, got " + format_number(value));
+  return value;
+}
+
+double Section::number(std::string_view key, double fallback) {
+  return find(key) ? number(key) : fallback;
+}
+
+long Section::integer(std::string_view key) {
+  const toml::node& node = require(key);
+  if (const auto* integer_node = node.as_integer()) return static_cast<long>(integer_node->get());
+  if (const auto* floating = node.as_floating_point()) {
+    const double value = floating->get();
+    if (std::isfinite(value) && value == std::round(value) && std::abs(value) < 1e15) return static_cast<long>(value);
+  }
+  fail(key, "expected an integer, got " + type_name(node), "write e.g. " + std::string(key) + " = 10");
+}
+
+long Section::integer(std::string_view key, long fallback) { return find(key) ? integer(key) : fallback; }
+
+bool Section::boolean(std::string_view key, bool fallback) {
+  const toml::node* node = find(key);
+  if (node == nullptr) return fallback;
+  if (const auto* flag = node->as_boolean()) return flag->get();
+  fail(key, "expected true or false, got " + type_name(*node));
+}
+
+std::string Section::string(std::string_view key) {
+  const toml::node& node = require(key);
+  if (const auto* text = node.as_string()) return text->get();
+  fail(key, "expected a string, got " + type_name(node), "quote it: " + std::string(key) + " = \"...\"");
+}
+
+std::string Section::string(std::string_view key, const std::string& fallback) {
+  return find(key) ? string(key) : fallback;
+}
+
+std::string Section::choice(std::string_view key, std::initializer_list<const char*> allowed,
+                            std::optional<std::string> fallback) {
+  std::string list;
+  for (const char* option : allowed) list += std::string(list.empty() ? "" : ", ") + "\"" + option + "\"";
+  if (!find(key) && fallback) return *fallback;
+  const std::string value = string(key);
+  for (const char* option : allowed)
+    if (value == option) return value;
+  fail(key, "unknown value \"" + value + "\"", "use one of " + list);
+}
+
+std::vector<double> Section::numbers(std::string_view key, std::size_t count) {
+  const toml::node& node = require(key);
+  const auto* array = node.as_array();
+  const std::string example = count == 2 ? " = [0.0, 1.0]" : " = [...]";
+  if (array == nullptr)
+    fail(key, "expected an array of numbers, got " + type_name(node), "write e.g. " + std::string(key) + example);
+  if (count != 0 && array->size() != count)
+    fail(key, "expected " + std::to_string(count) + " numbers, got " + std::to_string(array->size()),
+         "write e.g. " + std::string(key) + example);
+  std::vector<double> values;
+  for (const toml::node& element : *array) {
+    if (!element.is_number() || !std::isfinite(*element.value<double>()))
+      fail_at(&element, key_path(key), "element " + std::to_string(values.size()) + " is " + type_name(element) +
+                                           ", not a finite number");
+    values.push_back(*element.value<double>());
+  }
+  return values;
+}
+
+std::vector<std::string> Section::strings(std::string_view key) {
+  const toml::node& node = require(key);
+  const auto* array = node.as_array();
+  if (array == nullptr)
+    fail(key, "expected an array of strings, got " + type_name(node), "write e.g. " + std::string(key) + " = [\"a\"]");
+  std::vector<std::string> values;
+  for (const toml::node& element : *array) {
+    if (!element.is_string())
+      fail_at(&element, key_path(key), "element " + std::to_string(values.size()) + " is " + type_name(element) +
+                                           ", not a string");
+    values.push_back(*element.value<std::string>());
+  }
+  return values;
+}
+
+Section::ValueOrExpression Section::value_or_expression(const toml::node& node, const std::string& key_label,
+                                                        const std::vector<std::string>& variables) {
+  ValueOrExpression result;
+  result.node = &node;
+  std::string names;
+  for (const auto& variable : variables) names += (names.empty() ? "" : ", ") + variable;
+  if (node.is_number()) {
+    result.constant = *node.value<double>();
+    if (!std::isfinite(*result.constant)) fail_at(&node, key_label, "must be finite");
+    return result;
+  }
+  if (const auto* text = node.as_string()) {
+    try {
+      result.expression.emplace(text->get(), variables);
+    } catch (const ExpressionError& error) {
+      fail_at(&node, key_label, "expression \"" + text->get() + "\" does not parse: " + error.message,
+              "use the variables " + names + ", pi, +-*/^, ?:, and functions such as sin, sqrt, exp");
+    }
+    return result;
+  }
+  fail_at(&node, key_label, "expected a number or a string expression of " + names + ", got " + type_name(node));
+}
+
+Section::ValueOrExpression Section::value_or_expression(std::string_view key,
+                                                        const std::vector<std::string>& variables) {
+  return value_or_expression(require(key), key_path(key), variables);
+}
+
+std::optional<Section> Section::subtable(std::string_view key) {
+  const toml::node* node = find(key);
+  if (node == nullptr) return std::nullopt;
+  const auto* sub = node->as_table();
+  if (sub == nullptr) fail(key, "expected a table, got " + type_name(*node), "write it as [" + key_path(key) + "]");
+  return Section(file_, *sub, key_path(key));
+}
+
+std::vector<Section> Section::table_array(std::string_view key) {
+  std::vector<Section> result;
+  const toml::node* node = find(key);
+  if (node == nullptr) return result;
+  const auto* array = node->as_array();
+  if (array == nullptr || !array->is_array_of_tables())
+    fail(key, "expected an array of tables, got " + type_name(*node),
+         "write each entry as [[" + key_path(key) + "]]");
+  for (std::size_t i = 0; i < array->size(); ++i)
+    result.emplace_back(file_, *array->get(i)->as_table(), key_path(key) + "[" + std::to_string(i) + "]");
+  return result;
+}
+
+void Section::finish() const {
+  for (const auto& [key, node] : *table_) {
+    if (known_.count(key.str()) != 0) continue;
+    std::string list;
+    for (const auto& name : known_) list += (list.empty() ? "" : ", ") + name;
+    std::string message = where(file_, &node, table_) + ": key '" + key_path(key.str()) + "': unknown key";
+    message += list.empty() ? "; remove it" : "; expected one of " + list;
+    throw Error(message);
+  }
+}
+
+}  // namespace stagger::scene_detail

@@ -1,0 +1,194 @@
+/// @file norms.cpp
+/// Error norms of VERIFICATION.md ("How errors are measured"): area-weighted L1 and L2 means
+/// and the maximum, at zone centres (vertex average) and at points (median-dual areas, the
+/// corner areas of NUMERICS section 1), plus the mesh helpers the reference solutions share.
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+#include <tuple>
+
+#include "stagger/error.hpp"
+#include "stagger/simulation.hpp"
+#include "stagger/verify.hpp"
+
+namespace stagger {
+namespace {
+
+void check_positions(const Mesh& mesh, std::span<const double> x, std::span<const double> y) {
+  if (x.size() != static_cast<std::size_t>(mesh.num_points()) || y.size() != x.size()) {
+    std::ostringstream message;
+    message << "verify: position arrays of size " << x.size() << " and " << y.size() << " do not match the "
+            << mesh.num_points() << " points of mesh " << mesh.source;
+    throw Error(message.str());
+  }
+}
+
+}  // namespace
+
+std::array<std::vector<double>, 2> zone_centres(const Mesh& mesh, std::span<const double> x,
+                                                std::span<const double> y) {
+  check_positions(mesh, x, y);
+  const Index zones = mesh.num_zones();
+  std::array<std::vector<double>, 2> centres{std::vector<double>(zones), std::vector<double>(zones)};
+  for (Index z = 0; z < zones; ++z) {
+    const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
+    double sx = 0, sy = 0;
+    for (Index c = begin; c < end; ++c) {
+      sx += x[mesh.corner_point[c]];
+      sy += y[mesh.corner_point[c]];
+    }
+    centres[0][z] = sx / (end - begin);
+    centres[1][z] = sy / (end - begin);
+  }
+  return centres;
+}
+
+std::vector<double> zone_areas(const Mesh& mesh, std::span<const double> x, std::span<const double> y) {
+  check_positions(mesh, x, y);
+  const Index zones = mesh.num_zones();
+  std::vector<double> areas(zones);
+  for (Index z = 0; z < zones; ++z) {
+    const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
+    double twice = 0;  // shoelace, NUMERICS section 2
+    for (Index c = begin; c < end; ++c) {
+      const Index p = mesh.corner_point[c], q = mesh.corner_point[c + 1 < end ? c + 1 : begin];
+      twice += x[p] * y[q] - x[q] * y[p];
+    }
+    areas[z] = 0.5 * twice;
+  }
+  return areas;
+}
+
+std::vector<double> point_dual_areas(const Mesh& mesh, std::span<const double> x, std::span<const double> y) {
+  const auto centres = zone_centres(mesh, x, y);
+  std::vector<double> areas(mesh.num_points(), 0.0);
+  for (Index z = 0; z < mesh.num_zones(); ++z) {
+    const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
+    for (Index c = begin; c < end; ++c) {
+      const Index p = mesh.corner_point[c];
+      const Index next = mesh.corner_point[c + 1 < end ? c + 1 : begin];
+      const Index prev = mesh.corner_point[c > begin ? c - 1 : end - 1];
+      // Corner quadrilateral (point, mid-edge to next, centre, mid-edge to previous).
+      const double qx[4] = {x[p], 0.5 * (x[p] + x[next]), centres[0][z], 0.5 * (x[p] + x[prev])};
+      const double qy[4] = {y[p], 0.5 * (y[p] + y[next]), centres[1][z], 0.5 * (y[p] + y[prev])};
+      double twice = 0;
+      for (int k = 0; k < 4; ++k) twice += qx[k] * qy[(k + 1) % 4] - qx[(k + 1) % 4] * qy[k];
+      areas[p] += 0.5 * twice;
+    }
+  }
+  return areas;
+}
+
+void append_norms(std::span<const double> weights, std::span<const double> differences, const std::string& name,
+                  NamedValues& errors) {
+  if (weights.size() != differences.size()) {
+    std::ostringstream message;
+    message << "append_norms(" << name << "): " << weights.size() << " weights for " << differences.size()
+            << " values";
+    throw Error(message.str());
+  }
+  double total = 0, l1 = 0, l2 = 0, linf = 0;
+  for (std::size_t i = 0; i < weights.size(); ++i) {
+    const double d = std::abs(differences[i]);
+    linf = std::max(linf, d);
+    if (weights[i] > 0) {
+      total += weights[i];
+      l1 += weights[i] * d;
+      l2 += weights[i] * d * d;
+    }
+  }
+  if (!(total > 0)) throw Error("append_norms(" + name + "): the total weight (area) is not positive");
+  errors.emplace_back("L1_" + name, l1 / total);
+  errors.emplace_back("L2_" + name, std::sqrt(l2 / total));
+  errors.emplace_back("Linf_" + name, linf);
+}
+
+void zone_field_errors(const Simulation& simulation, std::span<const double> field,
+                       const std::function<double(double, double)>& exact, const std::string& name,
+                       NamedValues& errors) {
+  const Mesh& mesh = simulation.mesh();
+  if (field.size() != static_cast<std::size_t>(mesh.num_zones()))
+    throw Error("zone_field_errors(" + name + "): the field does not have one value per zone");
+  const auto centres = zone_centres(mesh, simulation.x(), simulation.y());
+  std::vector<double> differences(field.size());
+  for (std::size_t z = 0; z < field.size(); ++z) differences[z] = field[z] - exact(centres[0][z], centres[1][z]);
+  append_norms(simulation.zone_area(), differences, name, errors);
+}
+
+void point_field_errors(const Simulation& simulation, std::span<const double> field,
+                        const std::function<double(double, double)>& exact, const std::string& name,
+                        NamedValues& errors) {
+  const Mesh& mesh = simulation.mesh();
+  if (field.size() != static_cast<std::size_t>(mesh.num_points()))
+    throw Error("point_field_errors(" + name + "): the field does not have one value per point");
+  const auto x = simulation.x(), y = simulation.y();
+  std::vector<double> differences(field.size());
+  for (std::size_t p = 0; p < field.size(); ++p) differences[p] = field[p] - exact(x[p], y[p]);
+  append_norms(point_dual_areas(mesh, x, y), differences, name, errors);
+}
+
+void point_velocity_errors(const Simulation& simulation,
+                           const std::function<std::array<double, 2>(double, double)>& exact,
+                           const std::string& name, NamedValues& errors) {
+  const auto x = simulation.x(), y = simulation.y();
+  const auto vx = simulation.velocity_x(), vy = simulation.velocity_y();
+  std::vector<double> differences(x.size());
+  for (std::size_t p = 0; p < x.size(); ++p) {
+    const auto v = exact(x[p], y[p]);
+    differences[p] = std::hypot(vx[p] - v[0], vy[p] - v[1]);
+  }
+  append_norms(point_dual_areas(simulation.mesh(), x, y), differences, name, errors);
+}
+
+FrontCrossing front_crossing(const Mesh& mesh, std::span<const double> x, std::span<const double> y,
+                             std::span<const double> field, double threshold,
+                             const std::function<double(double, double)>& coordinate) {
+  if (field.size() != static_cast<std::size_t>(mesh.num_zones()))
+    throw Error("front_crossing: the field does not have one value per zone");
+  const auto centres = zone_centres(mesh, x, y);
+  std::vector<double> position(field.size());
+  for (std::size_t z = 0; z < field.size(); ++z) position[z] = coordinate(centres[0][z], centres[1][z]);
+  // Edges as (lower point, higher point, zone); an interior edge appears twice.
+  std::vector<std::tuple<Index, Index, Index>> edges;
+  edges.reserve(mesh.num_corners());
+  for (Index z = 0; z < mesh.num_zones(); ++z) {
+    const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
+    for (Index c = begin; c < end; ++c) {
+      const Index a = mesh.corner_point[c], b = mesh.corner_point[c + 1 < end ? c + 1 : begin];
+      edges.emplace_back(std::min(a, b), std::max(a, b), z);
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  FrontCrossing front;
+  double sum = 0;
+  for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
+    const auto [a0, b0, z0] = edges[i];
+    const auto [a1, b1, z1] = edges[i + 1];
+    if (a0 != a1 || b0 != b1) continue;
+    const Index inner = position[z0] <= position[z1] ? z0 : z1;
+    const Index outer = inner == z0 ? z1 : z0;
+    if (field[inner] >= threshold && field[outer] < threshold) {
+      const double fraction = (field[inner] - threshold) / (field[inner] - field[outer]);
+      sum += position[inner] + fraction * (position[outer] - position[inner]);
+      ++front.crossings;
+    }
+    ++i;  // the pair is consumed
+  }
+  if (front.crossings > 0) front.position = sum / front.crossings;
+  return front;
+}
+
+std::vector<std::vector<Index>> group_by_value(std::span<const double> values, double tolerance) {
+  std::vector<Index> order(values.size());
+  std::iota(order.begin(), order.end(), Index{0});
+  std::stable_sort(order.begin(), order.end(), [&](Index a, Index b) { return values[a] < values[b]; });
+  std::vector<std::vector<Index>> groups;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    if (k == 0 || values[order[k]] - values[order[k - 1]] > tolerance) groups.emplace_back();
+    groups.back().push_back(order[k]);
+  }
+  return groups;
+}
+
+}  // namespace stagger

@@ -1,0 +1,235 @@
+// The `stagger` executable: exit codes, one-line errors, mesh and run outputs.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int status = -1;
+  std::string out, err;
+};
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+class Cli : public ::testing::Test {
+protected:
+  void SetUp() override {
+    directory_ = fs::temp_directory_path() /
+                 (std::string("stagger_cli_test_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(directory_);
+    fs::create_directories(directory_);
+  }
+  void TearDown() override { fs::remove_all(directory_); }
+
+  // Runs `stagger ARGS` with stdout and stderr captured in files.
+  Result stagger(const std::string& args) const {
+    const fs::path out = directory_ / "stdout.txt", err = directory_ / "stderr.txt";
+    const std::string command = std::string(STAGGER_BINARY_DIR) + "/bin/stagger " + args + " >" + out.string() +
+                                " 2>" + err.string() + " </dev/null";
+    const int raw = std::system(command.c_str());
+    Result result;
+    result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    result.out = read_text(out);
+    result.err = read_text(err);
+    return result;
+  }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(directory_ / name) << text;
+    return (directory_ / name).string();
+  }
+  static void expect_one_line_error(const Result& result) {
+    EXPECT_EQ(result.status, 1);
+    EXPECT_EQ(result.err.rfind("stagger: error: ", 0), 0u) << result.err;
+    ASSERT_FALSE(result.err.empty());
+    EXPECT_EQ(result.err.find('\n'), result.err.size() - 1) << "exactly one line: " << result.err;
+  }
+
+  fs::path directory_;
+};
+
+const char* const tiny_scene = R"([scene]
+name = "tiny"
+[time]
+end = 0.01
+[mesh]
+generator = "rectangle"
+x = [0.0, 1.0]
+y = [0.0, 0.1]
+nx = 10
+ny = 1
+[[material]]
+name = "gas"
+eos = "ideal_gas"
+gamma = 1.4
+[[region]]
+name = "domain"
+material = "gas"
+density = "x < 0.5 ? 1.0 : 0.125"
+pressure = "x < 0.5 ? 1.0 : 0.1"
+[[boundary]]
+tags = ["left", "right", "bottom", "top"]
+type = "wall"
+[output]
+dump_interval = 0.005
+)";
+
+TEST_F(Cli, HelpDescribesCommandsAndTheOutputContract) {
+  const Result result = stagger("--help");
+  EXPECT_EQ(result.status, 0);
+  for (const char* part : {"run", "check", "mesh", "summary.json", "history.csv", ".pvd", "zone_cycles_per_second",
+                           "relative_energy_error", "density", "velocity", "--set"})
+    EXPECT_NE(result.out.find(part), std::string::npos) << part;
+}
+
+TEST_F(Cli, EverySubcommandHasHelp) {
+  for (const char* command : {"run", "check", "mesh"}) {
+    const Result result = stagger(std::string(command) + " --help");
+    EXPECT_EQ(result.status, 0) << command;
+    EXPECT_NE(result.out.find(std::string("usage: stagger ") + command), std::string::npos) << result.out;
+  }
+}
+
+TEST_F(Cli, NoCommandOrUnknownCommandIsAOneLineError) {
+  expect_one_line_error(stagger(""));
+  const Result result = stagger("frobnicate");
+  expect_one_line_error(result);
+  EXPECT_NE(result.err.find("unknown command 'frobnicate'"), std::string::npos);
+}
+
+TEST_F(Cli, UnknownOptionIsAOneLineError) {
+  const Result result = stagger("run scene.toml --fast");
+  expect_one_line_error(result);
+  EXPECT_NE(result.err.find("unknown option '--fast'"), std::string::npos);
+}
+
+TEST_F(Cli, CheckPrintsTheResolvedSetUp) {
+  const Result result = stagger("check " + write("tiny.toml", tiny_scene));
+  EXPECT_EQ(result.status, 0) << result.err;
+  EXPECT_NE(result.out.find("10 zones"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("ideal gas"), std::string::npos);
+  EXPECT_TRUE(result.err.empty()) << result.err;
+}
+
+TEST_F(Cli, CheckAndRunGiveTheSameOneLineErrorWithTheLine) {
+  std::string text = tiny_scene;
+  text.replace(text.find("nx = 10"), 7, "nx = -3");
+  const std::string path = write("bad.toml", text);
+  const Result check = stagger("check " + path), run = stagger("run " + path + " --out " + (directory_ / "o").string());
+  expect_one_line_error(check);
+  expect_one_line_error(run);
+  EXPECT_EQ(check.err, run.err);
+  EXPECT_NE(check.err.find("bad.toml:9: key 'mesh.nx'"), std::string::npos) << check.err;
+}
+
+TEST_F(Cli, SetOverridesReachTheScene) {
+  const std::string path = write("tiny.toml", tiny_scene);
+  const Result refined = stagger("check " + path + " --set mesh.refine=2");
+  EXPECT_EQ(refined.status, 0) << refined.err;
+  EXPECT_NE(refined.out.find("40 zones"), std::string::npos) << refined.out;
+  const Result bad = stagger("check " + path + " --set numerics.cfl=7");
+  expect_one_line_error(bad);
+  EXPECT_NE(bad.err.find("--set numerics.cfl=7: key 'numerics.cfl'"), std::string::npos) << bad.err;
+  expect_one_line_error(stagger("check " + path + " --set nonsense"));
+}
+
+TEST_F(Cli, MissingSceneIsAOneLineError) {
+  const Result result = stagger("check " + (directory_ / "absent.toml").string());
+  expect_one_line_error(result);
+  EXPECT_NE(result.err.find("absent.toml"), std::string::npos);
+}
+
+TEST_F(Cli, MeshesEveryGeometryAndWritesVtuAndMsh) {
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(STAGGER_SOURCE_DIR) / "geometries")) {
+    if (entry.path().extension() != ".geo") continue;
+    ++count;
+    const std::string stem = entry.path().stem().string();
+    const fs::path vtu = directory_ / (stem + ".vtu"), msh = directory_ / (stem + ".msh");
+    const Result to_vtu = stagger("mesh " + entry.path().string() + " -o " + vtu.string());
+    EXPECT_EQ(to_vtu.status, 0) << stem << ": " << to_vtu.err;
+    EXPECT_NE(to_vtu.out.find(" zones ("), std::string::npos) << to_vtu.out;
+    EXPECT_NE(to_vtu.out.find("quality:"), std::string::npos);
+    EXPECT_GT(fs::exists(vtu) ? fs::file_size(vtu) : 0, 100u) << stem;
+    const Result to_msh = stagger("mesh " + entry.path().string() + " --output=" + msh.string());
+    EXPECT_EQ(to_msh.status, 0) << stem << ": " << to_msh.err;
+    // The written .msh reads back with the same zone count.
+    const Result again = stagger("mesh " + msh.string());
+    EXPECT_EQ(again.status, 0) << stem << ": " << again.err;
+    const auto zones = [](const std::string& out) { return out.substr(0, out.find(" zones")); };
+    EXPECT_EQ(zones(again.out).substr(zones(again.out).rfind(' ')), zones(to_vtu.out).substr(zones(to_vtu.out).rfind(' ')))
+        << stem;
+  }
+  EXPECT_GE(count, 4);
+}
+
+TEST_F(Cli, MeshParametersOverrideTheGeo) {
+  const std::string geo = std::string(STAGGER_SOURCE_DIR) + "/geometries/quarter_shell.geo";
+  const Result base = stagger("mesh " + geo);
+  const Result finer = stagger("mesh " + geo + " --set n_theta=40 --set n_r=32");
+  ASSERT_EQ(base.status, 0) << base.err;
+  ASSERT_EQ(finer.status, 0) << finer.err;
+  EXPECT_NE(base.out.find("320 zones"), std::string::npos) << base.out;
+  EXPECT_NE(finer.out.find("1280 zones"), std::string::npos) << finer.out;
+  expect_one_line_error(stagger("mesh " + geo + " --set n_theta=many"));
+  expect_one_line_error(stagger("mesh " + geo + " -o out.txt"));
+}
+
+TEST_F(Cli, LeftoverTrianglesCanBeRejected) {
+  const std::string geo = std::string(STAGGER_SOURCE_DIR) + "/geometries/triangles_left.geo";
+  EXPECT_EQ(stagger("mesh " + geo).status, 0);
+  EXPECT_EQ(stagger("mesh " + geo + " --triangles subdivide").status, 0);
+  expect_one_line_error(stagger("mesh " + geo + " --triangles reject"));
+  expect_one_line_error(stagger("mesh " + geo + " --triangles sometimes"));
+}
+
+TEST_F(Cli, MissingGeometryIsAOneLineError) {
+  expect_one_line_error(stagger("mesh " + (directory_ / "none.geo").string()));
+}
+
+TEST_F(Cli, RunWritesTheOutputContract) {
+  const fs::path out = directory_ / "run";
+  const Result result = stagger("run " + write("tiny.toml", tiny_scene) + " --out " + out.string() + " --threads 1");
+  ASSERT_EQ(result.status, 0) << result.err << result.out;
+  EXPECT_NE(result.out.find("completed"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("zone-cycles/s"), std::string::npos);
+  EXPECT_NE(result.out.find("relative error"), std::string::npos);
+  ASSERT_TRUE(fs::exists(out / "summary.json"));
+  ASSERT_TRUE(fs::exists(out / "history.csv"));
+  ASSERT_TRUE(fs::exists(out / "tiny.pvd"));
+  const std::string summary = read_text(out / "summary.json");
+  for (const char* key : {"\"scene\"", "\"zones\"", "\"points\"", "\"cycles\"", "\"t_end\"", "\"wall_seconds\"",
+                          "\"zone_cycles_per_second\"", "\"energy\"", "\"relative_error\""})
+    EXPECT_NE(summary.find(key), std::string::npos) << key << " in " << summary;
+  const std::string history = read_text(out / "history.csv");
+  EXPECT_NE(history.find("time"), std::string::npos);
+  EXPECT_GT(std::count(history.begin(), history.end(), '\n'), 2);
+  const std::string pvd = read_text(out / "tiny.pvd");
+  int vtu_files = 0;
+  for (const auto& entry : fs::directory_iterator(out))
+    if (entry.path().extension() == ".vtu") {
+      ++vtu_files;
+      EXPECT_NE(pvd.find(entry.path().filename().string()), std::string::npos) << entry.path();
+    }
+  EXPECT_GE(vtu_files, 3);  // t = 0, 0.005, 0.01
+}
+
+TEST_F(Cli, RunRejectsBadThreadCounts) {
+  expect_one_line_error(stagger("run " + write("tiny.toml", tiny_scene) + " --threads zero"));
+}
+
+}  // namespace

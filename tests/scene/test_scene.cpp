@@ -1,0 +1,374 @@
+// Scene files: every error names the file, the line and the key; overrides; every scene loads.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <string>
+
+#include "stagger/error.hpp"
+#include "stagger/scene.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// A tiny valid scene; line numbers below refer to this text.
+const char* const base_scene =
+    R"([time]
+end = 0.1
+[mesh]
+generator = "rectangle"
+x = [0.0, 1.0]
+y = [0.0, 0.1]
+nx = 10
+ny = 2
+[[material]]
+name = "gas"
+eos = "ideal_gas"
+gamma = 1.4
+[[region]]
+name = "domain"
+material = "gas"
+density = 1.0
+pressure = 1.0
+[[boundary]]
+tags = ["left", "right", "bottom", "top"]
+type = "wall"
+)";
+
+class SceneFile : public ::testing::Test {
+protected:
+  void SetUp() override {
+    directory_ = fs::temp_directory_path() /
+                 ("stagger_scene_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+                  ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(directory_);
+  }
+  void TearDown() override { fs::remove_all(directory_); }
+
+  std::string write(const std::string& text, const std::string& name = "scene.toml") {
+    const fs::path path = directory_ / name;
+    std::ofstream(path) << text;
+    return path.string();
+  }
+  // Replaces the first occurrence of `from` in the base scene.
+  static std::string edit(const std::string& from, const std::string& to) {
+    std::string text = base_scene;
+    const auto position = text.find(from);
+    EXPECT_NE(position, std::string::npos) << from;
+    return text.replace(position, from.size(), to);
+  }
+  // The message of the Error that loading `text` throws ("" if none).
+  std::string error_of(const std::string& text, const std::vector<std::pair<std::string, std::string>>& overrides = {}) {
+    const std::string path = write(text);
+    try {
+      stagger::load_scene(path, overrides);
+    } catch (const stagger::Error& error) {
+      EXPECT_EQ(std::string(error.what()).find('\n'), std::string::npos) << "one line: " << error.what();
+      return error.what();
+    }
+    return "";
+  }
+  std::string located(int line) const { return (directory_ / "scene.toml").string() + ":" + std::to_string(line); }
+
+  fs::path directory_;
+};
+
+#define EXPECT_CONTAINS(text, part) EXPECT_NE(std::string(text).find(part), std::string::npos) << (text)
+
+TEST_F(SceneFile, ValidSceneLoadsWithDefaults) {
+  const stagger::Scene scene = stagger::load_scene(write(base_scene));
+  EXPECT_EQ(scene.problem.mesh.num_zones(), 20);
+  EXPECT_EQ(scene.problem.name, "scene");  // the file stem
+  EXPECT_EQ(scene.control.output_directory, "output/scene");
+  EXPECT_DOUBLE_EQ(scene.problem.t_end, 0.1);
+  EXPECT_DOUBLE_EQ(scene.problem.options.cfl, 0.15);
+  EXPECT_EQ(scene.problem.boundaries.size(), 4u);
+  EXPECT_FALSE(stagger::describe(scene).empty());
+}
+
+TEST_F(SceneFile, MalformedTomlNamesLineAndColumn) {
+  const std::string message = error_of(edit("nx = 10", "nx = = 10"));
+  EXPECT_CONTAINS(message, located(7) + ":");
+  EXPECT_CONTAINS(message, "malformed TOML");
+}
+
+TEST_F(SceneFile, UnknownKeyNamesLineKeyAndTheKnownKeys) {
+  const std::string message = error_of(edit("ny = 2", "ny = 2\nnz = 3"));
+  EXPECT_CONTAINS(message, located(9) + ": key 'mesh.nz': unknown key");
+  EXPECT_CONTAINS(message, "ny");
+}
+
+TEST_F(SceneFile, UnknownSectionIsRejectedBeforeMeshing) {
+  const std::string message = error_of(std::string(base_scene) + "[numerix]\ncfl = 0.1\n");
+  EXPECT_CONTAINS(message, located(21) + ": key 'numerix': unknown key");
+}
+
+TEST_F(SceneFile, WrongTypeNamesTheKey) {
+  const std::string message = error_of(edit("nx = 10", "nx = \"ten\""));
+  EXPECT_CONTAINS(message, located(7) + ": key 'mesh.nx': expected an integer, got a string");
+}
+
+TEST_F(SceneFile, MissingRequiredKeyNamesTheSection) {
+  const std::string message = error_of(edit("end = 0.1\n", ""));
+  EXPECT_CONTAINS(message, located(1) + ": key 'time.end': missing");
+}
+
+TEST_F(SceneFile, UnknownRegionListsTheMeshRegions) {
+  const std::string message = error_of(edit("name = \"domain\"", "name = \"dome\""));
+  EXPECT_CONTAINS(message, located(14) + ": key 'region[0].name': the mesh has no region 'dome'");
+  EXPECT_CONTAINS(message, "domain");
+}
+
+TEST_F(SceneFile, UnknownTagListsTheMeshTags) {
+  const std::string message = error_of(edit("\"top\"]", "\"roof\"]"));
+  EXPECT_CONTAINS(message, located(19) + ": key 'boundary[0].tags': the mesh has no boundary tag 'roof'");
+  EXPECT_CONTAINS(message, "left, right, bottom, top");
+}
+
+TEST_F(SceneFile, TagWithoutBoundaryIsNamed) {
+  const std::string message = error_of(edit(", \"top\"]", "]"));
+  EXPECT_CONTAINS(message, "key 'boundary': mesh tag(s) top have no [[boundary]]");
+}
+
+TEST_F(SceneFile, UnknownMaterialListsTheMaterials) {
+  const std::string message = error_of(edit("material = \"gas\"", "material = \"air\""));
+  EXPECT_CONTAINS(message, located(15) + ": key 'region[0].material': unknown material 'air'");
+  EXPECT_CONTAINS(message, "materials: gas");
+}
+
+TEST_F(SceneFile, MeshRegionWithoutSetupIsNamed) {
+  std::ofstream(directory_ / "two.geo") << R"(
+Point(1) = {0, 0, 0}; Point(2) = {1, 0, 0}; Point(3) = {2, 0, 0};
+Point(4) = {2, 1, 0}; Point(5) = {1, 1, 0}; Point(6) = {0, 1, 0};
+Line(1) = {1, 2}; Line(2) = {2, 5}; Line(3) = {5, 6}; Line(4) = {6, 1};
+Line(5) = {2, 3}; Line(6) = {3, 4}; Line(7) = {4, 5};
+Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+Curve Loop(2) = {5, 6, 7, -2}; Plane Surface(2) = {2};
+Transfinite Curve{1:7} = 3; Transfinite Surface{1, 2}; Recombine Surface{1, 2};
+Physical Surface("gas") = {1}; Physical Surface("metal") = {2};
+Physical Curve("outside") = {1, 3, 4, 5, 6, 7};
+)";
+  std::string text = base_scene;
+  text.replace(text.find("generator"), text.find("[[material]]") - text.find("generator"), "file = \"two.geo\"\n");
+  text.replace(text.find("name = \"domain\""), 15, "name = \"gas\"");
+  text.replace(text.find("tags = ["), text.find("type = \"wall\"") - text.find("tags = ["), "tag = \"outside\"\n");
+  const std::string message = error_of(text);
+  EXPECT_CONTAINS(message, "mesh region(s) metal have no [[region]]");
+}
+
+TEST_F(SceneFile, ExpressionThatDoesNotParseIsNamed) {
+  const std::string message = error_of(edit("density = 1.0", "density = \"1 + * x\""));
+  EXPECT_CONTAINS(message, located(16) + ": key 'region[0].density': expression \"1 + * x\" does not parse");
+}
+
+TEST_F(SceneFile, UnknownVariableInExpressionIsNamed) {
+  const std::string message = error_of(edit("density = 1.0", "density = \"1 + z\""));
+  EXPECT_CONTAINS(message, located(16) + ": key 'region[0].density'");
+  EXPECT_CONTAINS(message, "\"z\"");
+}
+
+TEST_F(SceneFile, DivisionByZeroNamesThePoint) {
+  const std::string message = error_of(edit("pressure = 1.0", "pressure = \"1 / (x - 0.05)\""));
+  EXPECT_CONTAINS(message, located(17) + ": key 'region[0].pressure': evaluates to inf at (0.05, 0.025)");
+}
+
+TEST_F(SceneFile, NegativeDensityIsRejected) {
+  EXPECT_CONTAINS(error_of(edit("density = 1.0", "density = -1.0")),
+                  located(16) + ": key 'region[0].density': must be > 0");
+  EXPECT_CONTAINS(error_of(edit("density = 1.0", "density = \"x < 0.5 ? 1 : -1\"")), "must be > 0, got -1");
+}
+
+TEST_F(SceneFile, NegativeIdealGasPressureIsRejected) {
+  EXPECT_CONTAINS(error_of(edit("pressure = 1.0", "pressure = -1.0")), "must be >= 0 for an ideal gas");
+}
+
+TEST_F(SceneFile, CflOutsideTheUnitIntervalIsRejected) {
+  EXPECT_CONTAINS(error_of(std::string(base_scene) + "[numerics]\ncfl = 1.5\n"),
+                  located(22) + ": key 'numerics.cfl': must be in (0, 1");
+  EXPECT_CONTAINS(error_of(std::string(base_scene) + "[numerics]\ncfl = 0\n"), "key 'numerics.cfl'");
+}
+
+TEST_F(SceneFile, NonPositiveEndTimeIsRejected) {
+  EXPECT_CONTAINS(error_of(edit("end = 0.1", "end = 0.0")), located(2) + ": key 'time.end': must be > 0");
+  EXPECT_CONTAINS(error_of(edit("end = 0.1", "end = -1")), "key 'time.end': must be > 0");
+}
+
+TEST_F(SceneFile, UnknownChoiceListsTheOptions) {
+  const std::string message = error_of(edit("type = \"wall\"", "type = \"mirror\""));
+  EXPECT_CONTAINS(message, located(20) + ": key 'boundary[0].type': unknown value \"mirror\"");
+  EXPECT_CONTAINS(message, "\"periodic\"");
+}
+
+TEST_F(SceneFile, MissingMeshFileIsNamed) {
+  std::string text = base_scene;
+  text.replace(text.find("generator = \"rectangle\""), 23, "file = \"nowhere.geo\"");
+  const std::string message = error_of(text);
+  EXPECT_CONTAINS(message, located(4) + ": key 'mesh.file': 'nowhere.geo' not found");
+}
+
+TEST_F(SceneFile, SetOverridesRefineEveryCountByDefault) {
+  const stagger::Scene scene = stagger::load_scene(write(base_scene), {{"mesh.refine", "2"}});
+  EXPECT_EQ(scene.problem.mesh.num_zones(), 80);
+}
+
+TEST_F(SceneFile, RefinedListsWhichCountsRefineMultiplies) {
+  const stagger::Scene scene =
+      stagger::load_scene(write(edit("ny = 2", "ny = 2\nrefined = [\"nx\"]")), {{"mesh.refine", "3"}});
+  EXPECT_EQ(scene.problem.mesh.num_zones(), 60);
+  EXPECT_CONTAINS(error_of(edit("ny = 2", "ny = 2\nrefined = [\"nz\"]")), "'nz' is not a parameter of this mesh");
+}
+
+TEST_F(SceneFile, SetCreatesMissingSectionsAndParsesValues) {
+  const stagger::Scene scene = stagger::load_scene(
+      write(base_scene), {{"numerics.cfl", "0.3"}, {"numerics.viscosity", "edge"}, {"output.dumps", "false"},
+                          {"region[0].density", "\"2 + x\""}, {"time.end", "0.05"}});
+  EXPECT_DOUBLE_EQ(scene.problem.options.cfl, 0.3);
+  EXPECT_EQ(scene.problem.options.viscosity, stagger::Viscosity::edge);
+  EXPECT_FALSE(scene.control.dumps);
+  EXPECT_DOUBLE_EQ(scene.problem.regions[0].density(0.5, 0.0), 2.5);
+  EXPECT_DOUBLE_EQ(scene.problem.t_end, 0.05);
+}
+
+TEST_F(SceneFile, SetWithAnUnknownPathIsAnErrorNamingTheOverride) {
+  EXPECT_CONTAINS(error_of(base_scene, {{"numerics.cfll", "0.3"}}),
+                  "--set numerics.cfll=0.3: key 'numerics.cfll': unknown key");
+  EXPECT_CONTAINS(error_of(base_scene, {{"nonsense.key", "1"}}), "--set nonsense.key=1: key 'nonsense': unknown key");
+  EXPECT_CONTAINS(error_of(base_scene, {{"region[3].density", "1"}}), "'region' has 1 entries");
+  EXPECT_CONTAINS(error_of(base_scene, {{"region.density", "1"}}), "pick one entry, e.g. region[0].density");
+  EXPECT_CONTAINS(error_of(base_scene, {{"numerics.cfl", "2"}}), "--set numerics.cfl=2: key 'numerics.cfl': must be in");
+}
+
+TEST_F(SceneFile, ExpressionsAreEvaluatedWithPiAndTernary) {
+  const stagger::Scene scene = stagger::load_scene(
+      write(edit("density = 1.0", "density = \"x < 0.5 ? 1 + sin(pi * x) : 0.125\"\nvelocity = [\"y\", 2]")));
+  const auto& region = scene.problem.regions[0];
+  EXPECT_NEAR(region.density(0.25, 0.0), 1 + std::sin(M_PI / 4), 1e-15);
+  EXPECT_DOUBLE_EQ(region.density(0.75, 0.0), 0.125);
+  EXPECT_DOUBLE_EQ(region.velocity_x(0.0, 0.07), 0.07);
+  EXPECT_DOUBLE_EQ(region.velocity_y(0.3, 0.07), 2.0);
+}
+
+TEST_F(SceneFile, TimeDependentBoundaryVelocity) {
+  const std::string text = edit("tags = [\"left\", \"right\", \"bottom\", \"top\"]\ntype = \"wall\"",
+                                "tag = \"left\"\ntype = \"velocity\"\nvelocity = [\"t < 0.05 ? 2 * t : 0.1\", 0]\n"
+                                "[[boundary]]\ntags = [\"right\", \"bottom\", \"top\"]\ntype = \"wall\"");
+  const stagger::Scene scene = stagger::load_scene(write(text));
+  ASSERT_EQ(scene.problem.boundaries.size(), 4u);
+  EXPECT_EQ(scene.problem.boundaries[0].kind, stagger::BoundaryKind::velocity);
+  EXPECT_DOUBLE_EQ(scene.problem.boundaries[0].velocity_x(0.01), 0.02);
+  EXPECT_DOUBLE_EQ(scene.problem.boundaries[0].velocity_x(0.09), 0.1);
+}
+
+TEST_F(SceneFile, TransformMovesThePoints) {
+  const stagger::Scene scene =
+      stagger::load_scene(write(edit("ny = 2", "ny = 2\ntransform = { x = \"x + (0.1 - y) * sin(pi * x)\" }")));
+  const auto& mesh = scene.problem.mesh;
+  bool moved = false;
+  for (stagger::Index p = 0; p < mesh.num_points(); ++p) {
+    EXPECT_GE(mesh.x[p], -1e-12);
+    EXPECT_LE(mesh.x[p], 1 + 1e-12);
+    // Points on y = 0 inside (0, 1) move right by 0.1 sin(pi x0).
+    if (mesh.y[p] == 0 && mesh.x[p] > 0.2 && mesh.x[p] < 0.9) moved = true;
+  }
+  EXPECT_TRUE(moved);
+  EXPECT_EQ(mesh.num_zones(), 20);
+}
+
+TEST_F(SceneFile, PerturbMovesInteriorPointsOnly) {
+  const stagger::Scene plain = stagger::load_scene(write(edit("ny = 2", "ny = 4")));
+  const stagger::Scene shaken = stagger::load_scene(write(edit("ny = 2", "ny = 4\nperturb = 0.3\nseed = 7")));
+  const auto& a = plain.problem.mesh;
+  const auto& b = shaken.problem.mesh;
+  ASSERT_EQ(a.num_points(), b.num_points());
+  int moved = 0;
+  for (stagger::Index p = 0; p < a.num_points(); ++p) {
+    const bool boundary = a.x[p] == 0 || a.x[p] == 1 || a.y[p] == 0 || std::abs(a.y[p] - 0.1) < 1e-15;
+    const double shift = std::hypot(b.x[p] - a.x[p], b.y[p] - a.y[p]);
+    if (boundary) {
+      EXPECT_EQ(shift, 0.0);
+    }
+    if (shift > 0) ++moved;
+    EXPECT_LE(shift, 0.3 * 0.025 * std::sqrt(2.0) + 1e-15);  // shortest edge 0.025
+  }
+  EXPECT_EQ(moved, 9 * 3);
+}
+
+TEST_F(SceneFile, ClockwiseGeoIsRepairedWithANote) {
+  std::string text = base_scene;
+  const fs::path geometry = fs::path(STAGGER_SOURCE_DIR) / "geometries" / "clockwise_square.geo";
+  text.replace(text.find("generator"), text.find("[[material]]") - text.find("generator"),
+               "file = \"" + geometry.string() + "\"\n");
+  text.replace(text.find("name = \"domain\""), 15, "name = \"square\"");
+  const auto path = write(text);
+  // An absolute path also works: it is joined to the scene's directory by path rules.
+  const stagger::Scene scene = stagger::load_scene(path);
+  ASSERT_FALSE(scene.notes.empty());
+  EXPECT_CONTAINS(scene.notes.front(), "reoriented");
+}
+
+TEST_F(SceneFile, PeriodicPartnersCoverBothTags) {
+  const std::string text = edit("tags = [\"left\", \"right\", \"bottom\", \"top\"]\ntype = \"wall\"",
+                                "tag = \"left\"\ntype = \"periodic\"\npartner = \"right\"\n"
+                                "[[boundary]]\ntags = [\"bottom\", \"top\"]\ntype = \"wall\"");
+  const stagger::Scene scene = stagger::load_scene(write(text));
+  ASSERT_EQ(scene.problem.boundaries.size(), 3u);
+  EXPECT_EQ(scene.problem.boundaries[0].partner, "right");
+}
+
+TEST_F(SceneFile, UnknownVerificationReferenceIsAnError) {
+  EXPECT_CONTAINS(error_of(std::string(base_scene) + "[verification]\nreference = \"blast\"\n"),
+                  located(22) + ": key 'verification.reference': unknown value \"blast\"");
+}
+
+TEST_F(SceneFile, ShockTubeReferenceIsInstalled) {
+  const stagger::Scene scene = stagger::load_scene(write(
+      std::string(base_scene) +
+      "[verification]\nreference = \"shock_tube\"\nleft = { density = 1.0, pressure = 1.0 }\n"
+      "right = { density = 0.125, pressure = 0.1 }\nx0 = 0.5\n"));
+  EXPECT_TRUE(static_cast<bool>(scene.control.reference));
+}
+
+TEST(Scenes, EveryExampleSceneLoadsAndValidates) {
+  const fs::path directory = fs::path(STAGGER_SOURCE_DIR) / "apps" / "scenes";
+  std::set<std::string> names;
+  for (const auto& entry : fs::directory_iterator(directory)) {
+    if (entry.path().extension() != ".toml") continue;
+    SCOPED_TRACE(entry.path().string());
+    names.insert(entry.path().stem().string());
+    stagger::Scene scene;
+    ASSERT_NO_THROW(scene = stagger::load_scene(entry.path().string())) << [&] {
+      try {
+        stagger::load_scene(entry.path().string());
+      } catch (const std::exception& error) {
+        return std::string(error.what());
+      }
+      return std::string();
+    }();
+    EXPECT_EQ(scene.problem.name, entry.path().stem().string());
+    EXPECT_GT(scene.problem.t_end, 0);
+    EXPECT_GT(scene.problem.mesh.num_zones(), 0);
+    EXPECT_TRUE(static_cast<bool>(scene.control.reference)) << "every example scene has a [verification]";
+    // Every scene is on a ladder: mesh.refine = 2 must give more zones.
+    const stagger::Scene finer = stagger::load_scene(entry.path().string(), {{"mesh.refine", "2"}});
+    EXPECT_GT(finer.problem.mesh.num_zones(), scene.problem.mesh.num_zones());
+  }
+  for (const char* name : {"sod", "noh", "noh_polar", "sedov", "saltzman", "smooth", "piston", "be_shell", "accuracy",
+                           "detonation"})
+    EXPECT_EQ(names.count(name), 1u) << name;
+}
+
+TEST(Scenes, SodHasTheVerificationSetUp) {
+  const stagger::Scene scene = stagger::load_scene(std::string(STAGGER_SOURCE_DIR) + "/apps/scenes/sod.toml",
+                                                   {{"mesh.refine", "2"}});
+  EXPECT_EQ(scene.problem.mesh.num_zones(), 200 * 5);
+  EXPECT_DOUBLE_EQ(scene.problem.t_end, 0.2);
+  EXPECT_DOUBLE_EQ(scene.problem.options.hourglass_coefficient, 0.0);
+  EXPECT_DOUBLE_EQ(scene.problem.regions[0].density(0.25, 0.05), 1.0);
+  EXPECT_DOUBLE_EQ(scene.problem.regions[0].density(0.75, 0.05), 0.125);
+}
+
+}  // namespace

@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Installs Stagger's build and test dependencies from Debian 12 packages (as root).
+# Quick when everything is already installed.
+set -euo pipefail
+packages=(cmake ninja-build g++ pkg-config libcgal-dev libgmsh-dev libeigen3-dev libvtk9-dev libgtest-dev
+          libtomlplusplus-dev libmuparser-dev python3 python3-matplotlib)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "installing: ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update
+  apt-get install -y --no-install-recommends "${missing[@]}"
+fi

@@ -9,12 +9,13 @@
 
 namespace stagger {
 
+/// Index of a point, zone, corner or region in a Mesh.
 using Index = std::int32_t;
 
 /// A boundary curve segment (two point ids) with the index of its tag name.
 struct TaggedEdge {
-  std::int64_t a = 0, b = 0;
-  int tag = 0;
+  std::int64_t a = 0, b = 0;  ///< point ids in the soup
+  int tag = 0;                ///< index into PolygonSoup::tag_names
 };
 
 /// Polygons as they come from a file or a generator: any orientation, possibly with
@@ -31,13 +32,14 @@ struct PolygonSoup {
 
   /// Appends a polygon; returns its index.
   std::size_t add_polygon(const std::vector<std::int64_t>& points, int region);
+  /// Number of polygons.
   std::size_t num_polygons() const { return polygon_begin.size() - 1; }
 };
 
 /// A named boundary: its edges (each oriented as the zone it belongs to, CCW) and points.
 struct BoundaryTag {
-  std::string name;
-  std::vector<std::array<Index, 2>> edges;
+  std::string name;                         ///< physical curve name (e.g. "left")
+  std::vector<std::array<Index, 2>> edges;  ///< point pairs, in the zone's CCW order
   std::vector<Index> points;  ///< sorted, unique
 };
 
@@ -53,30 +55,39 @@ struct Mesh {
   std::vector<Index> point_corners;          ///< corners of each point, ascending
   std::vector<Index> zone_region;            ///< region index of each zone
   std::vector<Index> region_zone_begin{0};   ///< zones of region r: [begin[r], begin[r+1])
-  std::vector<std::string> region_names;
-  std::vector<BoundaryTag> tags;
-  std::string source = "<memory>";
+  std::vector<std::string> region_names;     ///< region index -> name
+  std::vector<BoundaryTag> tags;             ///< named boundaries
+  std::string source = "<memory>";           ///< where the mesh came from, for messages
 
+  /// @name Sizes
+  ///@{
   Index num_points() const { return static_cast<Index>(x.size()); }
   Index num_zones() const { return static_cast<Index>(zone_corner_begin.size()) - 1; }
   Index num_corners() const { return static_cast<Index>(corner_point.size()); }
   Index num_regions() const { return static_cast<Index>(region_names.size()); }
-  bool all_quads() const;
-  /// Index of the region or tag with this name, or -1.
+  ///@}
+  bool all_quads() const;  ///< every zone has four corners
+  /// Index of the region with this name, or -1.
   int region_index(const std::string& name) const;
+  /// Index into `tags` of the tag with this name, or -1.
   int tag_index(const std::string& name) const;
 };
 
 /// What build_mesh repaired or dropped, for the user to read.
 struct MeshBuildReport {
-  int reoriented_zones = 0;
-  int dropped_points = 0;
-  std::vector<std::string> notes;
+  int reoriented_zones = 0;        ///< clockwise zones turned counter-clockwise
+  int dropped_points = 0;          ///< orphan points removed
+  std::vector<std::string> notes;  ///< one line per repair, for the user
 };
 
 /// Options of the soup -> mesh import.
 struct MeshBuildOptions {
   bool quads_only = false;  ///< reject any zone that is not a quadrilateral
+  /// Check manifoldness and orientation consistency with CGAL and find boundary loops. The
+  /// built-in generators are valid by construction and may skip it (saves time and the
+  /// peak memory of CGAL's halfedge structure on 10^6-zone meshes); the geometric checks
+  /// (duplicate points, zero-area and bow-tie zones, orientation by signed area) always run.
+  bool check_topology = true;
 };
 
 /// Checks a polygon soup with CGAL and builds the flat arrays: orientation made consistent
@@ -88,12 +99,13 @@ Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options = {},
 
 /// Mesh quality figures (user report, `stagger mesh --check`).
 struct MeshQuality {
-  double min_area = 0, max_area = 0;
+  double min_area = 0, max_area = 0;  ///< zone areas
   double max_aspect_ratio = 0;    ///< longest edge / shortest edge over zones
   double min_angle_degrees = 0;   ///< smallest interior angle
-  Index non_convex_zones = 0;
-  Index triangles = 0, quads = 0, other_polygons = 0;
+  Index non_convex_zones = 0;     ///< zones with an interior angle above 180 degrees
+  Index triangles = 0, quads = 0, other_polygons = 0;  ///< zones by vertex count
 };
+/// Computes the quality figures of a mesh (at its stored positions).
 MeshQuality mesh_quality(const Mesh& mesh);
 
 /// Signed area of zone z (positive for CCW).

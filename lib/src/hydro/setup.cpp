@@ -1,6 +1,9 @@
 // Simulation set-up: masses (constant in time), initial state, boundary conditions and the
 // choice of kernels (NUMERICS sections 1, 9; ARCHITECTURE "skip what a scene doesn't need").
 #include <algorithm>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <cmath>
 #include <limits>
 #include <map>
@@ -281,14 +284,21 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
   // Work arrays.
   x = m.x;
   y = m.y;
-  for (auto* v : {&x_new, &y_new, &x_half, &y_half, &vx_new, &vy_new, &vx_star, &vy_star}) v->assign(np, 0.0);
+  for (auto* v : {&vx_new, &vy_new, &vx_star, &vy_star}) v->assign(np, 0.0);
+  if (any_strength || edge_viscosity || has_external || problem.sources) {
+    x_half.assign(np, 0.0);
+    y_half.assign(np, 0.0);
+  }
   for (auto* v : {&area, &e_new, &p, &q, &c}) v->assign(nz, 0.0);
-  for (auto* v : {&fx_prev, &fy_prev, &fx, &fy}) v->assign(nc, 0.0);
+  for (auto* v : {&corner_fx, &corner_fy}) v->assign(nc, 0.0);
 
   // Constrained points carry their prescribed velocity from t = 0 (no impulse in step one).
   apply_constraints(*this, vx, vy, 0.0);
   recompute_state();
   energy_initial = kinetic_energy() + internal_energy();
+#ifdef __GLIBC__
+  malloc_trim(0);  // hand the set-up's temporaries back to the OS before the long run
+#endif
 }
 
 }  // namespace stagger

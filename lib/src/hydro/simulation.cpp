@@ -157,7 +157,7 @@ std::string Simulation::checkpoint() const {
   w.value(s.energy_initial);
   w.value(s.boundary_work);
   w.value(s.source_work);
-  for (const auto* v : {&s.x, &s.y, &s.vx, &s.vy, &s.e, &s.q, &s.fx_prev, &s.fy_prev, &s.sxx, &s.syy, &s.sxy,
+  for (const auto* v : {&s.x, &s.y, &s.vx, &s.vy, &s.e, &s.q, &s.corner_fx, &s.corner_fy, &s.sxx, &s.syy, &s.sxy,
                         &s.plastic, &s.burn})
     w.array(*v);
   return w.out;
@@ -187,7 +187,7 @@ void Simulation::restore(std::string_view blob) {
   s.source_work = r.value<double>();
   const char* names[] = {"x", "y", "vx", "vy", "e", "q", "fx", "fy", "sxx", "syy", "sxy", "plastic", "burn"};
   int i = 0;
-  for (auto* v : {&s.x, &s.y, &s.vx, &s.vy, &s.e, &s.q, &s.fx_prev, &s.fy_prev, &s.sxx, &s.syy, &s.sxy, &s.plastic,
+  for (auto* v : {&s.x, &s.y, &s.vx, &s.vy, &s.e, &s.q, &s.corner_fx, &s.corner_fy, &s.sxx, &s.syy, &s.sxy, &s.plastic,
                   &s.burn})
     r.array(*v, names[i++]);
   s.recompute_state();

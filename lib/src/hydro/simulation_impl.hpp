@@ -4,6 +4,7 @@
 #include <array>
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -50,12 +51,13 @@ struct Simulation::Impl {
   bool edge_viscosity = false;
   double dt_min = 0;
 
-  // Topology (copied for locality from the mesh).
-  std::vector<Index> zone_corner_begin, corner_point, point_corner_begin, point_corners;
+  // Topology: views of the mesh's arrays (the mesh lives in `problem`, which never moves).
+  std::span<const Index> zone_corner_begin, corner_point, point_corner_begin, point_corners;
   std::vector<ZoneRange> ranges;
 
   // Points.
-  std::vector<double> x, y, x_new, y_new, x_half, y_half;
+  std::vector<double> x, y;
+  std::vector<double> x_half, y_half;  // only when strength, edge q or external forces need them
   std::vector<double> vx, vy, vx_new, vy_new, vx_star, vy_star;
   std::vector<double> point_mass;
   // Zones.
@@ -67,8 +69,8 @@ struct Simulation::Impl {
   std::vector<double> shear_modulus_of_zone;  // 0 for zones without strength
   // Burn.
   std::vector<double> burn, burn_new, lighting_time, burn_length;
-  // Corners: forces of the previous corrector and of this one.
-  std::vector<double> fx_prev, fy_prev, fx, fy;
+  // Corner forces: the last corrector's f^{n-1/2}, overwritten in place by f^{n+1/2}.
+  std::vector<double> corner_fx, corner_fy;
   std::vector<EdgeContinuation> continuation;
 
   // Boundary conditions.

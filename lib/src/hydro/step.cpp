@@ -23,6 +23,10 @@ namespace stagger {
 
 namespace {
 
+// Below this many zones or points a loop runs on one thread: thread start-up would cost
+// more than the loop (results are identical either way).
+constexpr Index kParallelMin = 4096;
+
 enum ZoneFailure : int { kTangled = 0, kEosDomain = 1, kNotFinite = 2 };
 
 // Encodes (zone, kind) so that a min-reduction picks the lowest zone deterministically.
@@ -82,8 +86,11 @@ RangeModel range_model(const Simulation::Impl& s, const ZoneRange& r) {
 
 // Inputs of the zone force kernel (Z1): where geometry and velocities come from.
 struct ForcePass {
-  const double* px;  // positions of the force geometry (x^{n+1/2}, or x^n for a fresh evaluation)
+  // Positions of the force geometry: px/py when given (x^n, or the stored x^{n+1/2}),
+  // else x^n + h_position v^n computed on the fly (the half step without an array).
+  const double* px;
   const double* py;
+  double h_position;
   const double* qvx;  // velocity for q and hourglass (v*, or v^n)
   const double* qvy;
   double dt_half;     // dt/2 for the predictor state; 0 for a fresh evaluation at t^n
@@ -100,18 +107,29 @@ std::int64_t force_zones(Simulation::Impl& s, const ZoneRange& r, const Eos& eos
   const Index* cb = s.zone_corner_begin.data();
   const Index* cp = s.corner_point.data();
   const double *vx = s.vx.data(), *vy = s.vy.data(), *x = s.x.data(), *y = s.y.data();
-  const double *fpx = s.fx_prev.data(), *fpy = s.fy_prev.data();
+  // Predictor forces f^{n-1/2}; each zone reads its corners before overwriting them.
+  const double *fpx = s.corner_fx.data(), *fpy = s.corner_fy.data();
   const bool bulk_q = !s.edge_viscosity;
   const bool objective = o.stress_update == StressUpdate::objective;
   const double hg = o.hourglass_coefficient;
   const bool fb = o.hourglass == Hourglass::flanagan_belytschko;
   std::int64_t failure = kNoFailure;
 
-#pragma omp parallel for schedule(static) reduction(min : failure)
+#pragma omp parallel for schedule(static) reduction(min : failure) if (r.end - r.begin > kParallelMin)
   for (Index z = r.begin; z < r.end; ++z) {
     const Index b = cb[z];
     const int n = N ? N : cb[z + 1] - b;
-    const ZoneVertices v = gather_vertices<N>(cp, b, n, pass.px, pass.py);
+    ZoneVertices v;
+    if (pass.px) {
+      v = gather_vertices<N>(cp, b, n, pass.px, pass.py);
+    } else {
+      v.n = n;
+      for (int k = 0; k < n; ++k) {
+        const Index p = cp[b + k];
+        v.x[k] = x[p] + pass.h_position * vx[p];
+        v.y[k] = y[p] + pass.h_position * vy[p];
+      }
+    }
     double ax[kMaxZoneVertices], ay[kMaxZoneVertices], wx[kMaxZoneVertices], wy[kMaxZoneVertices];
     double vnx[kMaxZoneVertices], vny[kMaxZoneVertices];
     corner_gradients(v, ax, ay);
@@ -206,7 +224,7 @@ void edge_viscosity_forces(Simulation::Impl& s, const ForcePass& pass) {
   for (const ZoneRange& r : s.ranges) {
     const RangeModel m = range_model(s, r);
     const double g1 = m.edge_gamma_factor;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (r.end - r.begin > kParallelMin)
     for (Index z = r.begin; z < r.end; ++z) {
       const Index b = cb[z];
       const int n = cb[z + 1] - b;
@@ -296,12 +314,13 @@ std::int64_t finish_zones(Simulation::Impl& s, const ZoneRange& r, const Eos& eo
   const Index* cb = s.zone_corner_begin.data();
   const Index* cp = s.corner_point.data();
   const double *vx = s.vx.data(), *vy = s.vy.data(), *ux = s.vx_new.data(), *uy = s.vy_new.data();
-  const double *fx = s.fx.data(), *fy = s.fy.data();
+  const double *fx = s.corner_fx.data(), *fy = s.corner_fy.data();
+  const double *x = s.x.data(), *y = s.y.data();
   const bool objective = o.stress_update == StressUpdate::objective;
   const auto* energy_source = s.problem.sources && s.problem.sources->energy ? &s.problem.sources->energy : nullptr;
   std::int64_t failure = kNoFailure;
   DtChoice best;
-#pragma omp parallel
+#pragma omp parallel if (r.end - r.begin > kParallelMin)
   {
     DtChoice local;
 #pragma omp for schedule(static) reduction(min : failure) nowait
@@ -341,7 +360,14 @@ std::int64_t finish_zones(Simulation::Impl& s, const ZoneRange& r, const Eos& eo
         s.sxx_new[z] = sn.xx, s.syy_new[z] = sn.yy, s.sxy_new[z] = sn.xy;
       }
       // Step 9: end geometry, density, EOS, time-step candidate.
-      const ZoneVertices ve = gather_vertices<N>(cp, b, n, s.x_new.data(), s.y_new.data());
+      // x^{n+1} = x^n + dt v_bar, computed here and committed after the whole step succeeds.
+      ZoneVertices ve;
+      ve.n = n;
+      for (int k = 0; k < n; ++k) {
+        const Index p = cp[b + k];
+        ve.x[k] = x[p] + dt * 0.5 * (vx[p] + ux[p]);
+        ve.y[k] = y[p] + dt * 0.5 * (vy[p] + uy[p]);
+      }
       double burn = 1;
       if (m.burn) {
         burn = burn_fraction(s.burn[z], t_new, s.lighting_time[z], s.burn_length[z], m.burn->detonation_speed, m.burn,
@@ -407,7 +433,7 @@ void Simulation::Impl::recompute_state() {
   const bool quads = all_quads;
   for_each_range(*this, [&](const ZoneRange& r, const auto& eos, const RangeModel& m) {
     DtChoice range_best;
-#pragma omp parallel
+#pragma omp parallel if (r.end - r.begin > kParallelMin)
     {
       DtChoice local;
 #pragma omp for schedule(static) reduction(min : failure) nowait
@@ -435,7 +461,7 @@ void Simulation::Impl::recompute_state() {
 }
 
 void Simulation::Impl::evaluate_forces_now() {
-  ForcePass pass{x.data(), y.data(), vx.data(), vy.data(), 0.0, t, fx_prev.data(), fy_prev.data()};
+  ForcePass pass{x.data(), y.data(), 0.0, vx.data(), vy.data(), 0.0, t, corner_fx.data(), corner_fy.data()};
   std::int64_t failure = kNoFailure;
   for_each_range(*this, [&](const ZoneRange& r, const auto& eos, const RangeModel& m) {
     failure = std::min(failure, all_quads ? force_zones<4>(*this, r, eos, m, pass) : force_zones<0>(*this, r, eos, m, pass));
@@ -497,13 +523,16 @@ bool Simulation::Impl::try_step(double dt) {
   // P1 (steps 1, 2, 4): half positions and predicted half-step velocity v*.
   {
     const double h = 0.5 * dt;
-    const double *fpx = fx_prev.data(), *fpy = fy_prev.data();
-#pragma omp parallel for schedule(static)
+    const double *fpx = corner_fx.data(), *fpy = corner_fy.data();
+    const bool store_half = !x_half.empty();
+#pragma omp parallel for schedule(static) if (np > kParallelMin)
     for (Index p = 0; p < np; ++p) {
       double Fx = 0, Fy = 0;
       for (Index k = pcb[p]; k < pcb[p + 1]; ++k) Fx += fpx[pc[k]], Fy += fpy[pc[k]];
-      x_half[p] = x[p] + h * vx[p];
-      y_half[p] = y[p] + h * vy[p];
+      if (store_half) {
+        x_half[p] = x[p] + h * vx[p];
+        y_half[p] = y[p] + h * vy[p];
+      }
       vx_star[p] = vx[p] + h * Fx / M[p];
       vy_star[p] = vy[p] + h * Fy / M[p];
     }
@@ -519,12 +548,21 @@ bool Simulation::Impl::try_step(double dt) {
   }
 
   // Z1 (steps 2, 3, 5): half-step state and the corner forces f^{n+1/2}.
-  ForcePass pass{x_half.data(), y_half.data(), vx_star.data(), vy_star.data(), 0.5 * dt, t_half, fx.data(), fy.data()};
+  ForcePass pass{x_half.empty() ? nullptr : x_half.data(),
+                 x_half.empty() ? nullptr : y_half.data(),
+                 0.5 * dt,
+                 vx_star.data(),
+                 vy_star.data(),
+                 0.5 * dt,
+                 t_half,
+                 corner_fx.data(),
+                 corner_fy.data()};
   std::int64_t failure = kNoFailure;
   for_each_range(*this, [&](const ZoneRange& r, const auto& eos, const RangeModel& m) {
     failure = std::min(failure, all_quads ? force_zones<4>(*this, r, eos, m, pass) : force_zones<0>(*this, r, eos, m, pass));
   });
   if (failure != kNoFailure) {
+    have_previous_forces = false;  // the corner forces now hold this failed attempt's
     if (failure % 4 == kTangled) return false;
     throw_zone_failure(*this, failure, "at the half step");
   }
@@ -532,9 +570,9 @@ bool Simulation::Impl::try_step(double dt) {
 
   // P2 (step 6): momentum with the same corner forces, constraints, positions.
   {
-    const double *fxp = fx.data(), *fyp = fy.data();
+    const double *fxp = corner_fx.data(), *fyp = corner_fy.data();
     const bool external = has_external, sources = !src_fx.empty();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (np > kParallelMin)
     for (Index p = 0; p < np; ++p) {
       double Fx = 0, Fy = 0;
       for (Index k = pcb[p]; k < pcb[p + 1]; ++k) Fx += fxp[pc[k]], Fy += fyp[pc[k]];
@@ -550,11 +588,6 @@ bool Simulation::Impl::try_step(double dt) {
       free_vy[i] = vy_new[constrained[i]];
     }
     apply_constraints(*this, vx_new, vy_new, t_new);
-#pragma omp parallel for schedule(static)
-    for (Index p = 0; p < np; ++p) {
-      x_new[p] = x[p] + dt * 0.5 * (vx[p] + vx_new[p]);
-      y_new[p] = y[p] + dt * 0.5 * (vy[p] + vy_new[p]);
-    }
   }
 
   // Z2 (steps 7, 8, 9).
@@ -565,6 +598,7 @@ bool Simulation::Impl::try_step(double dt) {
                                           : finish_zones<0>(*this, r, eos, m, dt, t_new, choice));
   });
   if (failure != kNoFailure) {
+    have_previous_forces = false;
     recompute_state();  // restore area, density, pressure of the start of the step
     if (failure % 4 == kTangled) return false;
     throw_zone_failure(*this, failure, "at the end of the step");
@@ -587,9 +621,12 @@ bool Simulation::Impl::try_step(double dt) {
   if (!source_energy.empty())
     for (double w : source_energy) source_added += w;
 
-  // Commit.
-  x.swap(x_new);
-  y.swap(y_new);
+  // Commit: x^{n+1} = x^n + dt v_bar (the same expression as in Z2), then the state.
+#pragma omp parallel for schedule(static) if (np > kParallelMin)
+  for (Index p = 0; p < np; ++p) {
+    x[p] = x[p] + dt * 0.5 * (vx[p] + vx_new[p]);
+    y[p] = y[p] + dt * 0.5 * (vy[p] + vy_new[p]);
+  }
   vx.swap(vx_new);
   vy.swap(vy_new);
   e.swap(e_new);
@@ -600,8 +637,6 @@ bool Simulation::Impl::try_step(double dt) {
     plastic.swap(plastic_new);
   }
   if (any_burn) burn.swap(burn_new);
-  fx_prev.swap(fx);
-  fy_prev.swap(fy);
   have_previous_forces = true;
   boundary_work += constraint_work + external_work;
   source_work += source_added;
@@ -667,9 +702,14 @@ Index Simulation::Impl::find_tangled_zone(double dt) {
   for (Index z = 0; z < nz; ++z) {
     const Index b = zone_corner_begin[z];
     const int n = zone_corner_begin[z + 1] - b;
-    // Positions as the failed step left them in x_new (v_new from the last attempt).
-    (void)dt;
-    const ZoneVertices v = gather_vertices<0>(corner_point.data(), b, n, x_new.data(), y_new.data());
+    // End positions of the failed attempt (v_new is still its velocity).
+    ZoneVertices v;
+    v.n = n;
+    for (int k = 0; k < n; ++k) {
+      const Index p = corner_point[b + k];
+      v.x[k] = x[p] + dt * 0.5 * (vx[p] + vx_new[p]);
+      v.y[k] = y[p] + dt * 0.5 * (vy[p] + vy_new[p]);
+    }
     double ca[kMaxZoneVertices];
     const double smallest_corner = corner_areas(v, ca);
     if (!(polygon_area(v) > 0) || (problem.options.check_corner_areas && !(smallest_corner > 0))) return z;

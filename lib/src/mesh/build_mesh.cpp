@@ -243,8 +243,24 @@ Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options,
     cpoints[k] = compact[static_cast<std::size_t>(soup.polygon_points[k])];
   std::vector<std::int64_t> polygon_ids(npoly);
   std::iota(polygon_ids.begin(), polygon_ids.end(), std::int64_t{0});
-  const detail::TopologyResult topo = detail::orient_and_check_topology(
-      {cx, cy, soup.polygon_begin, cpoints, used, polygon_ids, soup.source});
+  detail::TopologyResult topo;
+  if (options.check_topology) {
+    topo = detail::orient_and_check_topology({cx, cy, soup.polygon_begin, cpoints, used, polygon_ids, soup.source});
+  } else {
+    // Trusted topology (the built-in generators): orientation from each zone's signed area.
+    topo.reversed.assign(npoly, 0);
+    for (std::size_t f = 0; f < npoly; ++f) {
+      double twice = 0;
+      const auto begin = soup.polygon_begin[f], end = soup.polygon_begin[f + 1];
+      for (auto k = begin; k < end; ++k) {
+        const auto p0 = static_cast<std::size_t>(cpoints[static_cast<std::size_t>(k)]);
+        const auto p1 = static_cast<std::size_t>(cpoints[static_cast<std::size_t>(k + 1 < end ? k + 1 : begin)]);
+        twice += cx[p0] * cy[p1] - cx[p1] * cy[p0];
+      }
+      topo.reversed[f] = twice < 0 ? 1 : 0;
+    }
+  }
+  polygon_ids = {};
   for (auto r : topo.reversed) rep.reoriented_zones += r;
   if (rep.reoriented_zones > 0)
     rep.notes.push_back(std::to_string(rep.reoriented_zones) + " of " + std::to_string(npoly) +
@@ -366,7 +382,8 @@ Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options,
       if (!tagged.contains(edge_key(a, b))) ++untagged;
     }
   }
-  rep.notes.push_back(std::to_string(topo.boundary_loops.size()) + " boundary loop(s), " +
+  if (options.check_topology)
+    rep.notes.push_back(std::to_string(topo.boundary_loops.size()) + " boundary loop(s), " +
                       std::to_string(boundary_edges) + " boundary edges, " +
                       std::to_string(untagged) + " of them untagged");
   if (topo.flipped_components > 0)

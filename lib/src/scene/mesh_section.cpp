@@ -84,7 +84,7 @@ Mesh read_mesh_section(Section& section, const std::string& scene_file, std::vec
                                                            : "missing: the mesh needs a file or a generator",
                  "write file = \"shape.geo\" or generator = \"rectangle\"");
   const double refine = section.number("refine", 1.0);
-  if (!(refine > 0)) section.fail("refine", "must be > 0, got " + std::to_string(refine));
+  if (!(refine > 0)) section.fail("refine", "must be > 0, got " + show(refine));
   const std::vector<std::string> refined = section.has("refined") ? section.strings("refined")
                                                                   : std::vector<std::string>{};
   const bool quads_only = section.boolean("quads_only", false);
@@ -175,7 +175,7 @@ Mesh read_mesh_section(Section& section, const std::string& scene_file, std::vec
       section.fail("parameters", "a .msh file takes no parameters", "remove [mesh.parameters]");
     check_refined(parameter_names);
     if (refine != 1 && refined.empty())
-      section.fail("refine", "refine = " + std::to_string(refine) + " but mesh.refined lists no parameter",
+      section.fail("refine", "refine = " + show(refine) + " but mesh.refined lists no parameter",
                    "list the [mesh.parameters] that set the zone counts, e.g. refined = [\"n\"]");
     try {
       soup = meshgen::read_mesh_file(resolved.string(), options);
@@ -195,7 +195,7 @@ Mesh read_mesh_section(Section& section, const std::string& scene_file, std::vec
       const double new_x = fx ? (*fx)(x, y) : x, new_y = fy ? (*fy)(x, y) : y;
       if (!std::isfinite(new_x) || !std::isfinite(new_y))
         transform->fail(std::isfinite(new_x) ? "y" : "x",
-                        "not finite at the point (" + std::to_string(x) + ", " + std::to_string(y) + ")",
+                        "not finite at the point (" + show(x) + ", " + show(y) + ")",
                         "guard the expression, e.g. with ?:");
       soup.x[p] = new_x;
       soup.y[p] = new_y;
@@ -203,12 +203,14 @@ Mesh read_mesh_section(Section& section, const std::string& scene_file, std::vec
   }
 
   const double perturb = section.number("perturb", 0.0);
-  if (!(perturb >= 0 && perturb < 0.5)) section.fail("perturb", "must be in [0, 0.5), got " + std::to_string(perturb));
+  if (!(perturb >= 0 && perturb < 0.5)) section.fail("perturb", "must be in [0, 0.5), got " + show(perturb));
   const long seed = section.integer("seed", 1);
   section.finish();
 
   MeshBuildOptions build_options;
   build_options.quads_only = quads_only;
+  // Generators are valid by construction: skip CGAL's halfedge build (time and peak memory).
+  build_options.check_topology = has_file;
   MeshBuildReport report;
   Mesh mesh;
   try {
@@ -216,13 +218,8 @@ Mesh read_mesh_section(Section& section, const std::string& scene_file, std::vec
   } catch (const Error& failure) {
     section.fail(has_file ? "file" : "generator", failure.what());
   }
-  if (report.reoriented_zones > 0)
-    notes.push_back("mesh: " + std::to_string(report.reoriented_zones) + " clockwise zones of " + mesh_label +
-                    " were reoriented counter-clockwise");
-  if (report.dropped_points > 0)
-    notes.push_back("mesh: " + std::to_string(report.dropped_points) + " unused points of " + mesh_label +
-                    " were dropped");
-  for (const auto& note : report.notes) notes.push_back("mesh: " + note);
+  // The report's notes already count reoriented zones and dropped points.
+  for (const auto& note : report.notes) notes.push_back("mesh " + mesh_label + ": " + note);
   if (perturb > 0) perturb_mesh(mesh, perturb, static_cast<std::uint64_t>(seed), section);
   return mesh;
 }

@@ -12,25 +12,32 @@ namespace stagger {
 
 /// p = (gamma - 1) rho e.
 struct IdealGas {
-  double gamma = 1.4;
+  double gamma = 1.4;  ///< ratio of specific heats, > 1
 };
 
 /// Mie-Grueneisen (paper eq. 6), eta = 1 - rho0/rho.
 struct MieGruneisen {
-  double rho0 = 0, a0 = 0, gamma0 = 0, s = 0;
+  double rho0 = 0;    ///< reference density
+  double a0 = 0;      ///< bulk sound speed (Hugoniot intercept c0)
+  double gamma0 = 0;  ///< Grueneisen coefficient Gamma0
+  double s = 0;       ///< Hugoniot slope (U_s = a0 + s u_p)
 };
 
 /// JWL; V = rho0/rho; p_JWL = A(1-w/(R1 V))e^{-R1 V} + B(1-w/(R2 V))e^{-R2 V} + w rho e.
 struct Jwl {
-  double A = 0, B = 0, R1 = 0, R2 = 0, omega = 0, rho0 = 0;
+  double A = 0, B = 0;    ///< pressure coefficients
+  double R1 = 0, R2 = 0;  ///< decay constants
+  double omega = 0;       ///< Grueneisen coefficient of the products
+  double rho0 = 0;        ///< unreacted density
 };
 
+/// One of the equations of state above (std::visit or std::get_if to inspect).
 using EquationOfState = std::variant<IdealGas, MieGruneisen, Jwl>;
 
 /// Elastic-perfectly-plastic strength: shear modulus mu and yield stress Y (von Mises).
 struct Strength {
-  double shear_modulus = 0;
-  double yield_stress = 0;
+  double shear_modulus = 0;  ///< mu, >= 0
+  double yield_stress = 0;   ///< Y (sqrt(3/2 S:S) <= Y), >= 0
 };
 
 /// Programmed burn (LS-DYNA style): lighting time = distance to the nearest detonator
@@ -46,10 +53,10 @@ struct Burn {
 
 /// A named material: one EOS, optional strength and burn.
 struct Material {
-  std::string name;
-  EquationOfState eos = IdealGas{};
-  std::optional<Strength> strength;
-  std::optional<Burn> burn;
+  std::string name;                  ///< referred to by RegionSetup::material
+  EquationOfState eos = IdealGas{};  ///< the pointwise p(rho, e)
+  std::optional<Strength> strength;  ///< none: a fluid (no deviatoric stress)
+  std::optional<Burn> burn;          ///< programmed burn (JWL products only)
   double min_energy = -1e300;  ///< floor reported as an error when crossed (EOS domain)
 };
 

@@ -33,7 +33,9 @@ public:
   explicit PvdWriter(std::string pvd_path);
   /// Records `vtu_file` (relative to the .pvd's directory) at `time` and rewrites the .pvd.
   void add(double time, const std::string& vtu_file);
+  /// The (time, file) entries recorded so far.
   const std::vector<std::pair<double, std::string>>& entries() const { return entries_; }
+  /// Replaces the entries (restart from a checkpoint); the file is rewritten on the next add().
   void restore(std::vector<std::pair<double, std::string>> entries) { entries_ = std::move(entries); }
 
 private:
@@ -47,9 +49,13 @@ private:
 class HistoryWriter {
 public:
   explicit HistoryWriter(std::string csv_path);
+  /// Appends one row for the simulation's current state (in memory).
   void record(const Simulation& simulation);
+  /// Writes the whole table to the .csv (atomically). Throws stagger::Error.
   void flush() const;
+  /// The table so far (header line and rows), e.g. for a checkpoint.
   const std::string& text() const { return rows_; }
+  /// Replaces the rows (restart from a checkpoint).
   void restore(std::string rows) { rows_ = std::move(rows); }
 
 private:
@@ -59,14 +65,22 @@ private:
 
 /// Everything summary.json reports beyond the simulation's own state.
 struct RunSummary {
-  std::string scene;
+  std::string scene;             ///< scene file (or problem name)
   double wall_seconds = 0;       ///< whole run
   double loop_seconds = 0;       ///< time loop alone (for zone_cycles_per_second)
-  int threads = 1;
+  int threads = 1;               ///< OpenMP threads used
   std::string status = "completed";  ///< or the error message that stopped the run
-  NamedValues errors;
-  NamedValues diagnostics;
+  NamedValues errors;            ///< error norms from the reference (L1_density, ...)
+  NamedValues diagnostics;       ///< other reference figures (shock position, ...)
 };
+
+/// Writes one CSV row per zone, in mesh order: zone, region (name), x, y (centre = vertex
+/// average, NUMERICS section 1), r (= sqrt(x^2 + y^2)), density, pressure,
+/// specific_internal_energy, velocity_x, velocity_y (mean of the zone's point velocities),
+/// artificial_viscosity, sound_speed, then deviatoric_stress_xx/yy/xy, von_mises and
+/// plastic_strain when the simulation has strength, and burn_fraction when it has a burn.
+/// For profile plots and figure scripts (docs/verification.md). Written atomically.
+void write_zone_csv(const std::string& path, const Simulation& simulation);
 
 /// Writes summary.json: scene, zones, points, cycles, t_end (the problem's), time (reached),
 /// dt, dt_limit, wall_seconds, loop_seconds, zone_cycles_per_second (zones x cycles /

@@ -18,8 +18,9 @@ using SpaceFunction = std::function<double(double x, double y)>;
 /// A scalar function of time, f(t).
 using TimeFunction = std::function<double(double t)>;
 
-/// Returns a SpaceFunction / TimeFunction that is a constant.
+/// Returns a SpaceFunction that is the constant `value` everywhere.
 SpaceFunction constant_field(double value);
+/// Returns a TimeFunction that is the constant `value` at all times.
 TimeFunction constant_in_time(double value);
 
 /// Initial state of one region. Zone fields are evaluated at the zone centre (vertex
@@ -28,11 +29,11 @@ TimeFunction constant_in_time(double value);
 struct RegionSetup {
   std::string region;    ///< region name in the mesh
   std::string material;  ///< material name in Problem::materials
-  SpaceFunction density;
+  SpaceFunction density;                   ///< rho0(x, y) > 0 (required)
   SpaceFunction pressure;                  ///< or:
   SpaceFunction specific_internal_energy;  ///< (exactly one of the two)
-  SpaceFunction velocity_x = constant_field(0.0);
-  SpaceFunction velocity_y = constant_field(0.0);
+  SpaceFunction velocity_x = constant_field(0.0);  ///< initial point velocity, x component
+  SpaceFunction velocity_y = constant_field(0.0);  ///< initial point velocity, y component
   /// Initial deviatoric stress (materials with strength only); empty = zero.
   SpaceFunction stress_xx, stress_yy, stress_xy;
 };
@@ -40,10 +41,11 @@ struct RegionSetup {
 /// Internal energy `energy` (total, not specific) deposited at t = 0, shared by mass
 /// among the zones that have the point nearest to (x, y) as a vertex (Sedov).
 struct EnergyDeposit {
-  double x = 0, y = 0;
-  double energy = 0;
+  double x = 0, y = 0;  ///< where (the nearest mesh point is used)
+  double energy = 0;    ///< total internal energy added (per unit length in z)
 };
 
+/// What a boundary condition imposes on the points of its tag.
 enum class BoundaryKind {
   wall,      ///< v.n = 0 (symmetry plane or rigid wall, any orientation)
   velocity,  ///< v.n = u(t).n, u = (velocity_x(t), velocity_y(t)); tangential free
@@ -52,16 +54,23 @@ enum class BoundaryKind {
   periodic,  ///< paired with `partner`; points matched by translation
 };
 
+/// A boundary condition on the points and edges of one mesh tag (a physical curve).
 struct BoundaryCondition {
-  std::string tag;
-  BoundaryKind kind = BoundaryKind::wall;
+  std::string tag;                         ///< boundary tag name in the mesh
+  BoundaryKind kind = BoundaryKind::wall;  ///< what is imposed
+  /// Prescribed velocity u(t) (kind velocity).
   TimeFunction velocity_x = constant_in_time(0.0), velocity_y = constant_in_time(0.0);
-  TimeFunction pressure = constant_in_time(0.0);
+  TimeFunction pressure = constant_in_time(0.0);  ///< applied pressure p(t) (kind pressure)
   std::string partner;  ///< periodic: the other tag
 };
 
+/// Artificial viscosity: zone-centred bulk q, or the edge-centred viscosity with limiter.
 enum class Viscosity { bulk, edge };
+/// Hourglass control (NUMERICS.md section 7): the paper's viscosity on the mode
+/// Gamma = (1,-1,1,-1), or the Flanagan-Belytschko projection (better on distorted quads).
 enum class Hourglass { gamma, flanagan_belytschko };
+/// Deviatoric stress update (NUMERICS.md section 4): the paper's rate form, or the objective
+/// incremental update S <- R S R^T (Hughes-Winget rotation).
 enum class StressUpdate { rate, objective };
 
 /// Numerical options; defaults are NUMERICS.md's.
@@ -95,16 +104,19 @@ struct Sources {
   std::function<double(double x, double y, double t)> energy;
 };
 
+/// A complete set-up. Moved into a Simulation, which validates it and keeps it
+/// (Simulation::problem()). Boundary points that no BoundaryCondition constrains are
+/// traction-free.
 struct Problem {
-  std::string name = "problem";
-  Mesh mesh;
-  std::vector<Material> materials;
-  std::vector<RegionSetup> regions;
-  std::vector<BoundaryCondition> boundaries;
-  std::vector<EnergyDeposit> deposits;
-  std::optional<Sources> sources;
-  HydroOptions options;
-  double t_end = 0;
+  std::string name = "problem";              ///< used in messages and output file names
+  Mesh mesh;                                 ///< from build_mesh (meshgen or your own soup)
+  std::vector<Material> materials;           ///< by name
+  std::vector<RegionSetup> regions;          ///< one per mesh region, exactly
+  std::vector<BoundaryCondition> boundaries; ///< by tag
+  std::vector<EnergyDeposit> deposits;       ///< point energy sources at t = 0 (Sedov)
+  std::optional<Sources> sources;            ///< manufactured-solution sources, if any
+  HydroOptions options;                      ///< numerics (NUMERICS.md defaults)
+  double t_end = 0;                          ///< end time, > 0
   /// Checks names, ranges and completeness; throws stagger::Error with the offending item.
   void validate() const;
 };

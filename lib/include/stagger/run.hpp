@@ -14,6 +14,7 @@ namespace stagger {
 
 class Simulation;
 
+/// What run() writes and where (a scene file's [output] section).
 struct RunControl {
   std::string output_directory = "output";
   std::string name = "problem";        ///< base name of the .pvd and .vtu files
@@ -27,10 +28,11 @@ struct RunControl {
   Reference reference;                 ///< errors/diagnostics for summary.json (may be empty)
 };
 
+/// The outcome of run() / resume().
 struct RunResult {
-  bool completed = false;
+  bool completed = false;  ///< t_end reached without error
   std::string message;  ///< the error that stopped the run, if any
-  RunSummary summary;
+  RunSummary summary;   ///< what summary.json holds beyond the state (timings, errors)
 };
 
 /// Runs to t_end. On a stagger::Error mid-run it writes a final dump and the summary with

@@ -10,10 +10,11 @@
 
 namespace stagger {
 
+/// A scene file read and resolved: what `stagger run` passes to Simulation and run().
 struct Scene {
   std::string file;        ///< path of the scene file
-  Problem problem;
-  RunControl control;
+  Problem problem;         ///< the set-up, ready for Simulation (move it in)
+  RunControl control;      ///< output settings and the reference solution, for run()
   std::vector<std::string> notes;  ///< repairs made on import (e.g. reoriented zones)
 };
 

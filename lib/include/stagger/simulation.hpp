@@ -16,16 +16,24 @@ namespace stagger {
 
 /// Total energy bookkeeping: relative_error = (E - E0 - W) / max(E0, |W|, E).
 struct EnergyAudit {
-  double kinetic = 0, internal = 0, total = 0, initial = 0;
-  double boundary_work = 0, source_work = 0;
-  double relative_error = 0;
+  double kinetic = 0, internal = 0;  ///< sum_p m_p |v_p|^2 / 2 and sum_z m_z e_z
+  double total = 0, initial = 0;     ///< E = kinetic + internal, and E at t = 0 (E0)
+  double boundary_work = 0;          ///< work done on the mesh by boundary conditions
+  double source_work = 0;            ///< work of the manufactured sources
+  double relative_error = 0;         ///< round-off (~1e-15) for the compatible scheme
 };
 
+/// A problem being solved: owns the Problem, the state arrays and the per-cycle hooks.
+/// Movable, not copyable. Independent Simulations share no mutable state, so several can
+/// run in parallel threads; one Simulation must not be used from two threads at once.
+/// The spans returned by the field accessors stay valid until the next step(),
+/// advance_to() or restore(); mesh() and problem() as long as this object (not moved from).
 class Simulation {
 public:
   /// Validates the problem (stagger::Error on bad input) and sets up the state at t = 0.
   explicit Simulation(Problem problem);
   ~Simulation();
+  /// Moves the whole state, remap and observer included.
   Simulation(Simulation&&) noexcept;
   Simulation& operator=(Simulation&&) noexcept;
   Simulation(const Simulation&) = delete;
@@ -39,42 +47,50 @@ public:
   void advance_to(double t);
   bool finished() const;  ///< time() >= t_end
 
-  double time() const;
-  long cycle() const;
+  double time() const;  ///< current time t
+  long cycle() const;   ///< completed cycles (0 at set-up)
   double dt() const;             ///< the last step's dt (0 before the first)
   std::string dt_limit() const;  ///< what limited the last dt ("cfl zone 12", ...)
 
-  const Problem& problem() const;
-  const Mesh& mesh() const;
+  const Problem& problem() const;  ///< the validated set-up (mesh positions as at t = 0)
+  const Mesh& mesh() const;        ///< topology, tags and regions (positions: x(), y())
 
-  // Point fields.
-  std::span<const double> x() const;
-  std::span<const double> y() const;
-  std::span<const double> velocity_x() const;
-  std::span<const double> velocity_y() const;
-  std::span<const double> point_mass() const;
-  // Zone fields.
-  std::span<const double> zone_mass() const;
-  std::span<const double> zone_area() const;
-  std::span<const double> density() const;
-  std::span<const double> pressure() const;
-  std::span<const double> specific_internal_energy() const;
-  std::span<const double> artificial_viscosity() const;
-  std::span<const double> sound_speed() const;
-  bool has_strength() const;
-  std::span<const double> stress_xx() const;  ///< empty without strength
-  std::span<const double> stress_yy() const;
-  std::span<const double> stress_xy() const;
-  std::span<const double> plastic_strain() const;
-  bool has_burn() const;
+  /// @name Point fields (size mesh().num_points())
+  ///@{
+  std::span<const double> x() const;  ///< current point x
+  std::span<const double> y() const;  ///< current point y
+  std::span<const double> velocity_x() const;  ///< point velocity, x component
+  std::span<const double> velocity_y() const;  ///< point velocity, y component
+  std::span<const double> point_mass() const;  ///< Lagrangian point mass (constant)
+  ///@}
+  /// @name Zone fields (size mesh().num_zones(), zones in mesh order)
+  ///@{
+  std::span<const double> zone_mass() const;  ///< Lagrangian zone mass (constant)
+  std::span<const double> zone_area() const;  ///< zone area of the current positions
+  std::span<const double> density() const;  ///< zone density m_z / A_z
+  std::span<const double> pressure() const;  ///< zone pressure from the EOS
+  std::span<const double> specific_internal_energy() const;  ///< zone specific internal energy e
+  std::span<const double> artificial_viscosity() const;  ///< zone artificial viscosity q of the last step
+  std::span<const double> sound_speed() const;  ///< zone sound speed
+  bool has_strength() const;  ///< some material has strength (stress arrays exist)
+  std::span<const double> stress_xx() const;  ///< deviatoric S_xx; empty without strength
+  std::span<const double> stress_yy() const;       ///< deviatoric S_yy; empty without strength
+  std::span<const double> stress_xy() const;       ///< deviatoric S_xy; empty without strength
+  std::span<const double> plastic_strain() const;  ///< equivalent plastic strain; empty without strength
+  bool has_burn() const;  ///< some material has a programmed burn
   std::span<const double> burn_fraction() const;  ///< empty without burn
+  ///@}
 
+  /// Energy audit of the current state (deterministic fixed-order sums).
   EnergyAudit energy() const;
+  /// Total momentum sum_p m_p v_p.
   std::array<double, 2> momentum() const;
 
   /// Installs a remap phase, called after each Lagrangian step (nullptr: none).
   void set_remap(std::shared_ptr<Remap> remap);
-  /// Called after every completed cycle.
+  /// Called after every completed cycle (after the remap), with this simulation; nullptr
+  /// removes it. The observer moves with the state: after `Simulation b(std::move(a))` it is
+  /// called with `b`.
   void set_observer(std::function<void(const Simulation&)> observer);
 
   /// Everything the next cycle reads (state, t, cycle, dt, previous forces, work, E(0)),

@@ -11,10 +11,17 @@
 
 namespace stagger {
 
-Simulation::Simulation(Problem problem) : impl_(std::make_unique<Impl>(std::move(problem))) {}
+Simulation::Simulation(Problem problem) : impl_(std::make_unique<Impl>(std::move(problem))) { impl_->owner = this; }
 Simulation::~Simulation() = default;
-Simulation::Simulation(Simulation&&) noexcept = default;
-Simulation& Simulation::operator=(Simulation&&) noexcept = default;
+// The observer is handed the owning Simulation: keep the back pointer right across moves.
+Simulation::Simulation(Simulation&& other) noexcept : impl_(std::move(other.impl_)) {
+  if (impl_) impl_->owner = this;
+}
+Simulation& Simulation::operator=(Simulation&& other) noexcept {
+  impl_ = std::move(other.impl_);
+  if (impl_) impl_->owner = this;
+  return *this;
+}
 
 void Simulation::step(double t_stop) {
   impl_->step(t_stop < 0 ? impl_->problem.t_end : t_stop);
@@ -92,11 +99,7 @@ std::array<double, 2> Simulation::momentum() const {
 void Simulation::set_remap(std::shared_ptr<Remap> remap) { impl_->remap = std::move(remap); }
 
 void Simulation::set_observer(std::function<void(const Simulation&)> observer) {
-  if (observer) {
-    impl_->observer_hook = [this, obs = std::move(observer)] { obs(*this); };
-  } else {
-    impl_->observer_hook = nullptr;
-  }
+  impl_->observer = std::move(observer);
 }
 
 // ---- checkpoints: a flat binary blob, versioned, checked against the mesh ----

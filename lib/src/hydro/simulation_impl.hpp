@@ -96,7 +96,8 @@ struct Simulation::Impl {
   Index dt_zone = -1;  // zone that limited the last CFL/volume candidate
 
   std::shared_ptr<Remap> remap;
-  std::function<void()> observer_hook;
+  std::function<void(const Simulation&)> observer;
+  const Simulation* owner = nullptr;  // the Simulation holding this Impl (for the observer)
 
   explicit Impl(Problem prob);
   void step(double t_stop);

@@ -693,7 +693,7 @@ void Simulation::Impl::step(double t_stop) {
     RemapState state{mesh(), t, cycle, x, y, vx, vy, e, sxx, syy, sxy, zone_mass, point_mass, area};
     if (remap->remap(state)) recompute_state();
   }
-  if (observer_hook) observer_hook();
+  if (observer) observer(*owner);
 }
 
 // The lowest zone whose end-of-step geometry is tangled for a step of dt (diagnostics only).

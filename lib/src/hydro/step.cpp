@@ -132,8 +132,8 @@ std::int64_t force_zones(Simulation::Impl& s, const ZoneRange& r, const Eos& eos
     }
     double ax[kMaxZoneVertices], ay[kMaxZoneVertices], wx[kMaxZoneVertices], wy[kMaxZoneVertices];
     double vnx[kMaxZoneVertices], vny[kMaxZoneVertices];
-    corner_gradients(v, ax, ay);
-    const double area = polygon_area(v);
+    corner_gradients<N>(v, ax, ay);
+    const double area = polygon_area<N>(v);
     const double mass = s.zone_mass[z];
     const double rho = mass / area;
     // Step 3: predictor energy with the forces already known, e^{n+1/2} = e^n - dt/2 f.v^n / M.
@@ -155,8 +155,8 @@ std::int64_t force_zones(Simulation::Impl& s, const ZoneRange& r, const Eos& eos
       if (pass.dt_half > 0) {
         const ZoneVertices vn = gather_vertices<N>(cp, b, n, x, y);
         double anx[kMaxZoneVertices], any[kMaxZoneVertices];
-        corner_gradients(vn, anx, any);
-        const VelocityGradient L = velocity_gradient(n, vnx, vny, anx, any, polygon_area(vn));
+        corner_gradients<N>(vn, anx, any);
+        const VelocityGradient L = velocity_gradient(n, vnx, vny, anx, any, polygon_area<N>(vn));
         sh = advance_stress(objective, m.mu, s0, s0, L, pass.dt_half);
         radial_return(m.yield, m.mu, sh);
       }
@@ -177,7 +177,7 @@ std::int64_t force_zones(Simulation::Impl& s, const ZoneRange& r, const Eos& eos
     div /= area;
     double qz = 0;
     if (bulk_q && div < 0) {
-      const double l = characteristic_length(v, area);
+      const double l = characteristic_length<N>(v, area);
       qz = rho * l * (-div) * (o.q2 * C + o.q1 * l * (-div));
     }
     s.q[z] = qz;
@@ -277,13 +277,12 @@ void edge_viscosity_forces(Simulation::Impl& s, const ForcePass& pass) {
 // The end-of-step zone state (step 9), shared with recompute_state so that a restart
 // reproduces it bitwise. Returns the failure code or kNoFailure.
 template <int N, class Eos>
-inline std::int64_t end_state(Simulation::Impl& s, Index z, const ZoneVertices& v, const double* ux, const double* uy,
+[[gnu::always_inline]] inline std::int64_t end_state(Simulation::Impl& s, Index z, const ZoneVertices& v, const double* ux, const double* uy,
                               double energy, double burn, const Eos& eos, const RangeModel& m, double& dt_zone) {
   const HydroOptions& o = s.problem.options;
   double ca[kMaxZoneVertices], ax[kMaxZoneVertices], ay[kMaxZoneVertices];
-  const double area = polygon_area(v);
-  const double smallest_corner = corner_areas(v, ca);
-  if (!(area > 0) || (o.check_corner_areas && !(smallest_corner > 0))) return failure_code(z, kTangled);
+  const double area = polygon_area<N>(v);
+  if (!(area > 0) || (o.check_corner_areas && !(corner_areas<N>(v, ca) > 0))) return failure_code(z, kTangled);
   const double rho = s.zone_mass[z] / area;
   eos::PressureSound ps{};
   if (!eos::evaluate(eos, rho, energy, ps)) return failure_code(z, kEosDomain);
@@ -293,11 +292,11 @@ inline std::int64_t end_state(Simulation::Impl& s, Index z, const ZoneVertices& 
   s.p[z] = m.burn ? burn * ps.p : ps.p;
   s.c[z] = C;
   if (!std::isfinite(s.p[z]) || !std::isfinite(C)) return failure_code(z, kNotFinite);
-  corner_gradients(v, ax, ay);
+  corner_gradients<N>(v, ax, ay);
   double div = 0;
-  for (int k = 0; k < v.n; ++k) div += ux[k] * ax[k] + uy[k] * ay[k];
+  for (int k = 0; k < (N ? N : v.n); ++k) div += ux[k] * ax[k] + uy[k] * ay[k];
   div /= area;
-  dt_zone = zone_time_step(o.cfl, o.q1, o.q2, o.volume_limit, characteristic_length(v, area), C, div);
+  dt_zone = zone_time_step(o.cfl, o.q1, o.q2, o.volume_limit, characteristic_length<N>(v, area), C, div);
   return kNoFailure;
 }
 
@@ -352,8 +351,8 @@ std::int64_t finish_zones(Simulation::Impl& s, const ZoneRange& r, const Eos& eo
       if (m.strength) {
         const ZoneVertices vh = gather_vertices<N>(cp, b, n, s.x_half.data(), s.y_half.data());
         double ax[kMaxZoneVertices], ay[kMaxZoneVertices];
-        corner_gradients(vh, ax, ay);
-        const VelocityGradient L = velocity_gradient(n, bx, by, ax, ay, polygon_area(vh));
+        corner_gradients<N>(vh, ax, ay);
+        const VelocityGradient L = velocity_gradient(n, bx, by, ax, ay, polygon_area<N>(vh));
         Deviator sn = advance_stress(objective, m.mu, {s.sxx[z], s.syy[z], s.sxy[z]},
                                      {s.sxx_half[z], s.syy_half[z], s.sxy_half[z]}, L, dt);
         s.plastic_new[z] = s.plastic[z] + radial_return(m.yield, m.mu, sn);
@@ -371,7 +370,7 @@ std::int64_t finish_zones(Simulation::Impl& s, const ZoneRange& r, const Eos& eo
       double burn = 1;
       if (m.burn) {
         burn = burn_fraction(s.burn[z], t_new, s.lighting_time[z], s.burn_length[z], m.burn->detonation_speed, m.burn,
-                             s.zone_mass[z] / polygon_area(ve), m.rho0_burn);
+                             s.zone_mass[z] / polygon_area<N>(ve), m.rho0_burn);
         s.burn_new[z] = burn;
       }
       double dtz = 1e300;

@@ -11,7 +11,7 @@ struct VelocityGradient {
   double xx = 0, xy = 0, yx = 0, yy = 0;
 };
 
-inline VelocityGradient velocity_gradient(int n, const double* vx, const double* vy, const double* ax,
+[[gnu::always_inline]] inline VelocityGradient velocity_gradient(int n, const double* vx, const double* vy, const double* ax,
                                           const double* ay, double area) {
   VelocityGradient L;
   for (int k = 0; k < n; ++k) {
@@ -31,7 +31,7 @@ struct Deviator {
 
 // Jaumann rate of the Wilkins hypo-elastic model, plane strain (NUMERICS section 4):
 // dS/dt = 2 mu (D - tr(D)/3 I) + W S - S W, evaluated at stress s.
-inline Deviator stress_rate(double mu, const Deviator& s, const VelocityGradient& L) {
+[[gnu::always_inline]] inline Deviator stress_rate(double mu, const Deviator& s, const VelocityGradient& L) {
   const double spin = L.xy - L.yx;
   return {(4.0 / 3.0) * mu * L.xx - (2.0 / 3.0) * mu * L.yy + s.xy * spin,
           (4.0 / 3.0) * mu * L.yy - (2.0 / 3.0) * mu * L.xx - s.xy * spin,
@@ -40,7 +40,7 @@ inline Deviator stress_rate(double mu, const Deviator& s, const VelocityGradient
 
 // S(t+h) from S(t): either the rate form S + h dS/dt(s_rate, L) (the paper's), or the
 // objective incremental update R S R^T + 2 mu D0 h with the Hughes-Winget rotation.
-inline Deviator advance_stress(bool objective, double mu, const Deviator& s0, const Deviator& s_rate,
+[[gnu::always_inline]] inline Deviator advance_stress(bool objective, double mu, const Deviator& s0, const Deviator& s_rate,
                                const VelocityGradient& L, double h) {
   if (!objective) {
     const Deviator r = stress_rate(mu, s_rate, L);
@@ -59,7 +59,7 @@ inline Deviator advance_stress(bool objective, double mu, const Deviator& s0, co
 
 // von Mises radial return with S_zz = -(S_xx + S_yy) in the norm; returns the equivalent
 // plastic strain increment (sigma_eq - Y) / (3 mu).
-inline double radial_return(double yield, double mu, Deviator& s) {
+[[gnu::always_inline]] inline double radial_return(double yield, double mu, Deviator& s) {
   const double szz = -(s.xx + s.yy);
   const double j2 = s.xx * s.xx + s.yy * s.yy + szz * szz + 2 * s.xy * s.xy;
   const double seq = std::sqrt(1.5 * j2);
@@ -70,7 +70,7 @@ inline double radial_return(double yield, double mu, Deviator& s) {
 }
 
 // Time-step candidate of one zone (NUMERICS section 6).
-inline double zone_time_step(double cfl, double q1, double q2, double volume_limit, double l, double C,
+[[gnu::always_inline]] inline double zone_time_step(double cfl, double q1, double q2, double volume_limit, double l, double C,
                              double div) {
   const double qhat = div < 0 ? q1 * l * (-div) + q2 * C : 0.0;
   const double denom = qhat + std::sqrt(qhat * qhat + C * C);

@@ -165,6 +165,13 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
       }
     }
     if (!std::isfinite(e0)) throw Error("region '" + setup.region + "': initial energy is not finite in " + zone_label(m, z));
+    if (std::holds_alternative<IdealGas>(mat.eos) && e0 < 0) {
+      std::ostringstream msg;
+      msg << "region '" << setup.region << "': an ideal gas needs a non-negative pressure and energy, but "
+          << zone_label(m, z) << " at (" << cx << ", " << cy << ") gets specific internal energy " << e0
+          << ": give a pressure >= 0";
+      throw Error(msg.str());
+    }
     e[z] = e0;
     rho[z] = rho0;
     corner_areas(v, corner_area.data());

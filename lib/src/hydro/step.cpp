@@ -480,7 +480,7 @@ void Simulation::Impl::external_forces(double t_half) {
   std::fill(src_fy.begin(), src_fy.end(), 0.0);
   // Median-dual area of each point on the half geometry, from the corner areas.
   const Index nz = mesh().num_zones();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nz > kParallelMin)
   for (Index z = 0; z < nz; ++z) {
     const Index b = zone_corner_begin[z];
     const int n = zone_corner_begin[z + 1] - b;
@@ -489,7 +489,7 @@ void Simulation::Impl::external_forces(double t_half) {
   }
   const Index np = mesh().num_points();
   const auto& momentum = problem.sources->momentum;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (np > kParallelMin)
   for (Index p = 0; p < np; ++p) {
     double vp = 0;
     for (Index k = point_corner_begin[p]; k < point_corner_begin[p + 1]; ++k) vp += corner_scratch[point_corners[k]];
@@ -497,14 +497,14 @@ void Simulation::Impl::external_forces(double t_half) {
     src_fx[p] = vp * f[0];
     src_fy[p] = vp * f[1];
   }
-  // Periodic copies of a point are one point: give the group's force once, shared by mass.
+  // Periodic copies of a point are one point: each copy holds part of its dual area, so the
+  // group's force is the sum over its copies, shared among them by mass.
   for (const auto& group : periodic_groups) {
-    double mass = 0;
-    for (Index p : group) mass += point_mass[p];
-    const Index first = group.front();
+    double mass = 0, fx = 0, fy = 0;
+    for (Index p : group) mass += point_mass[p], fx += src_fx[p], fy += src_fy[p];
     for (Index p : group) {
-      src_fx[p] = src_fx[first] * point_mass[p] / mass;
-      src_fy[p] = src_fy[first] * point_mass[p] / mass;
+      src_fx[p] = fx * point_mass[p] / mass;
+      src_fy[p] = fy * point_mass[p] / mass;
     }
   }
 }

@@ -39,3 +39,30 @@ TEST(Sod, ReproducesThePrototypeAt400ZonesWithEnergyAtRoundOff) {
 }
 
 }  // namespace stagger
+
+namespace stagger {
+
+TEST(Sod, ConvergesAtFirstOrderWithNoVariationAcrossTheTube) {
+  double previous = 0;
+  for (int nx : {100, 200, 400}) {
+    Simulation sim(testing::sod_problem(nx));
+    sim.advance_to(0.2);
+    NamedValues errors, diagnostics;
+    shock_tube_reference({1.0, 0.0, 1.0}, {0.125, 0.0, 0.1}, 1.4, 0.5)(sim, errors, diagnostics);
+    double l1 = 0, y_variation = 1;
+    for (const auto& [k, v] : errors)
+      if (k == "L1_density") l1 = v;
+    for (const auto& [k, v] : diagnostics)
+      if (k == "max_y_variation") y_variation = v;
+    EXPECT_LT(y_variation, 1e-10) << nx << " zones";
+    if (previous > 0) {
+      const double order = std::log2(previous / l1);
+      std::printf("sod %d: L1_density %.4e order %.3f\n", nx, l1, order);
+      EXPECT_GT(order, 0.8);
+      EXPECT_LT(order, 1.3);
+    }
+    previous = l1;
+  }
+}
+
+}  // namespace stagger

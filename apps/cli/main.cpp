@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "arguments.hpp"
+#include "bench.hpp"
 #include "commands.hpp"
 #include "stagger/error.hpp"
 
@@ -20,9 +21,12 @@ Staggered-grid Lagrangian hydrodynamics with elastic-plastic strength.
 commands:
   run SCENE.toml    run a scene: [--out DIR] [--set KEY=VALUE]... [--threads N]
                     [--restart CHECKPOINT] [--quiet]
-  check SCENE.toml  parse, mesh and validate a scene and print the resolved set-up
+  check SCENE.toml  parse, mesh, validate and set up a scene and print the resolved
+                    set-up: [--set KEY=VALUE]... [--out DIR]
   mesh IN.geo|.msh  mesh a geometry and report counts and quality: [-o OUT.msh|OUT.vtu]
                     [--set NAME=VALUE]... [--triangles accept|subdivide|reject] [--check]
+  bench [SUITE...]  benchmarks (ladders, throughput, stress) into CSVs: [--quick]
+                    [--out DIR] [--threads N] (docs/benchmarks.md)
 
 Scene files are TOML (docs/scenes.md); example and verification scenes are in
 apps/scenes/. --set KEY=VALUE overrides any value by its dotted path, e.g.
@@ -63,6 +67,7 @@ const std::vector<Entry>& commands() {
       {"run", stagger::cli::run_command},
       {"check", stagger::cli::check_command},
       {"mesh", stagger::cli::mesh_command},
+      {"bench", stagger::cli::bench_command},
   };
   return table;
 }

@@ -133,7 +133,7 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
   rho.assign(nz, 0.0);
   if (any_strength) {
     for (auto* v : {&sxx, &syy, &sxy, &sxx_new, &syy_new, &sxy_new, &sxx_half, &syy_half, &sxy_half, &plastic,
-                    &plastic_new, &shear_modulus_of_zone})
+                    &plastic_new, &shear_modulus_of_zone, &grad_xx, &grad_xy, &grad_yx, &grad_yy})
       v->assign(nz, 0.0);
   }
   std::vector<double> corner_area(kMaxZoneVertices);

@@ -153,10 +153,8 @@ std::int64_t force_zones(Simulation::Impl& s, const ZoneRange& r, const Eos& eos
       const Deviator s0{s.sxx[z], s.syy[z], s.sxy[z]};
       sh = s0;
       if (pass.dt_half > 0) {
-        const ZoneVertices vn = gather_vertices<N>(cp, b, n, x, y);
-        double anx[kMaxZoneVertices], any[kMaxZoneVertices];
-        corner_gradients<N>(vn, anx, any);
-        const VelocityGradient L = velocity_gradient(n, vnx, vny, anx, any, polygon_area<N>(vn));
+        // L(v^n) on x^n: kept from the end of the last step (end_state), bitwise the same.
+        const VelocityGradient L{s.grad_xx[z], s.grad_xy[z], s.grad_yx[z], s.grad_yy[z]};
         sh = advance_stress(objective, m.mu, s0, s0, L, pass.dt_half);
         radial_return(m.yield, m.mu, sh);
       }
@@ -296,6 +294,11 @@ template <int N, class Eos>
   double div = 0;
   for (int k = 0; k < (N ? N : v.n); ++k) div += ux[k] * ax[k] + uy[k] * ay[k];
   div /= area;
+  if (m.strength) {
+    // The next step's predictor needs L(v^n) on x^n: this is it.
+    const VelocityGradient L = velocity_gradient(N ? N : v.n, ux, uy, ax, ay, area);
+    s.grad_xx[z] = L.xx, s.grad_xy[z] = L.xy, s.grad_yx[z] = L.yx, s.grad_yy[z] = L.yy;
+  }
   dt_zone = zone_time_step(o.cfl, o.q1, o.q2, o.volume_limit, characteristic_length<N>(v, area), C, div);
   return kNoFailure;
 }

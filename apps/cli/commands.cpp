@@ -46,15 +46,17 @@ one line on stderr and in summary.json's "status").
 )";
 
 const char* const check_help =
-    R"(usage: stagger check SCENE.toml [--set KEY=VALUE]...
+    R"(usage: stagger check SCENE.toml [--set KEY=VALUE]... [--out DIR]
 
-Parses the scene, meshes it, validates every value and prints the resolved set-up
-(mesh counts and quality, materials, regions, boundary conditions, numerical options,
-outputs). Exit status 0 if the scene is valid; otherwise 1 with the same one-line
-error that 'stagger run' would give.
+Parses the scene, meshes it, validates every value, sets up the initial state (without
+stepping) and prints the resolved set-up (mesh counts and quality, materials, regions,
+boundary conditions, numerical options, outputs). Also checks that the output directory
+could be created and written (nothing is created). Exit status 0 if the scene is valid;
+otherwise 1 with the same one-line error that 'stagger run' would give.
 
 options:
   --set KEY=VALUE   as for 'stagger run'
+  --out DIR         the output directory to check (default: output/<scene name>)
   -h, --help        this help
 )";
 
@@ -104,6 +106,33 @@ std::string number(double value, int precision = 6) {
   return out.str();
 }
 
+// The checks `run` makes before it writes anything, shared with `check` so that both give
+// the same message: the output directory must be creatable and writable. Nothing is created.
+void check_output_directory(const std::string& directory) {
+  namespace fs = std::filesystem;
+  const fs::path path = directory.empty() ? fs::path(".") : fs::path(directory);
+  fs::path existing = path;  // the nearest part of the path that exists
+  std::error_code error;
+  while (!existing.empty() && !fs::exists(existing, error)) existing = existing.parent_path();
+  if (existing.empty()) existing = ".";
+  const std::string what = "cannot create output directory '" + path.string() + "': ";
+  const std::string todo = "; choose a writable output directory (--out)";
+  if (!fs::is_directory(existing, error))
+    throw Error(what + "'" + existing.string() + "' is not a directory" + todo);
+  if (::access(existing.c_str(), W_OK | X_OK) != 0)
+    throw Error(what + "'" + existing.string() + "' is not writable" + todo);
+}
+
+// Builds the Simulation; its set-up errors (which the scene reader cannot see, e.g. periodic
+// sides that do not match) are located at the scene file, the same for `run` and `check`.
+Simulation set_up(Problem problem, const std::string& scene_file) {
+  try {
+    return Simulation(std::move(problem));
+  } catch (const Error& failure) {
+    throw Error(scene_file + ": set-up failed: " + failure.what());
+  }
+}
+
 }  // namespace
 
 int run_command(const std::vector<std::string>& args) {
@@ -139,7 +168,8 @@ int run_command(const std::vector<std::string>& args) {
   for (const auto& note : scene.notes)
     if (!quiet) std::cerr << "stagger: note: " << note << "\n";
 
-  Simulation simulation(std::move(scene.problem));
+  check_output_directory(control.output_directory);
+  Simulation simulation = set_up(std::move(scene.problem), scene_path);
   const RunResult result = arguments.has("--restart") ? resume(simulation, control, arguments.value("--restart"))
                                                       : run(simulation, control);
   if (!quiet) {
@@ -171,9 +201,12 @@ int check_command(const std::vector<std::string>& args) {
     std::cout << check_help;
     return 0;
   }
-  const Arguments arguments("stagger check", args, {{"--set", "", true, true}});
+  const Arguments arguments("stagger check", args, {{"--set", "", true, true}, {"--out", "", true, false}});
   const std::string scene_path = single_positional(arguments, "stagger check", "scene file");
   const Scene scene = load_scene(scene_path, overrides_of(arguments));
+  // The same checks as `run` before its first step: output directory, then the set-up.
+  check_output_directory(arguments.has("--out") ? arguments.value("--out") : scene.control.output_directory);
+  static_cast<void>(set_up(scene.problem, scene_path));
   std::cout << describe(scene);
   std::cout << "scene is valid\n";
   return 0;

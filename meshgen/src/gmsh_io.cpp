@@ -5,6 +5,10 @@
 #include <gmsh.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
 #include <cctype>
 #include <cstdlib>
 #include <filesystem>
@@ -15,6 +19,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "stagger/error.hpp"
@@ -86,20 +91,229 @@ public:
 /// Runs `body` in a gmsh session, turning gmsh's std::string exceptions and logged errors
 /// into stagger::Error naming the file.
 template <class Body>
-auto with_gmsh(const std::string& path, Body body) {
-  std::lock_guard lock(gmsh_mutex());
+auto in_gmsh_session(const std::string& path, Body body) {
   GmshSession session;
   try {
     return body();
   } catch (const std::string& message) {
     const std::string logged = GmshSession::errors();
     throw Error("gmsh failed on " + path + ": " + (logged.empty() ? message : logged));
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& failure) {
+    // gmsh's readers trust the file: a corrupt count or element type ends in e.g.
+    // std::bad_array_new_length or std::bad_alloc (found by fuzzing read_msh).
+    const std::string logged = GmshSession::errors();
+    throw Error("gmsh failed on " + path + ": " + (logged.empty() ? std::string(failure.what()) : logged) +
+                "; the file is corrupt or not a valid MSH/.geo file");
+  }
+}
+
+template <class Body>
+auto with_gmsh(const std::string& path, Body body) {
+  std::lock_guard lock(gmsh_mutex());
+  return in_gmsh_session(path, body);
+}
+
+// --- Reading a .msh in a child process -------------------------------------------------
+// gmsh 4.8's MSH reader trusts the file: an element that names a missing node, or a
+// corrupt section, can crash it (segfault, double free) instead of reporting an error
+// (found by fuzzing read_msh, docs/robustness.md). The reader therefore runs in a forked
+// child that sends the soup (or the error) back through a pipe; a crash becomes a
+// stagger::Error naming the file. STAGGER_GMSH_IN_PROCESS=1 reads in-process (debugging).
+
+class Packer {
+public:
+  template <class T>
+  void value(const T& v) {
+    out_.append(reinterpret_cast<const char*>(&v), sizeof(T));
+  }
+  template <class T>
+  void vector(const std::vector<T>& v) {
+    value<std::uint64_t>(v.size());
+    out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+  }
+  void string(const std::string& s) {
+    value<std::uint64_t>(s.size());
+    out_ += s;
+  }
+  void strings(const std::vector<std::string>& v) {
+    value<std::uint64_t>(v.size());
+    for (const auto& s : v) string(s);
+  }
+  const std::string& bytes() const { return out_; }
+
+private:
+  std::string out_;
+};
+
+class Unpacker {
+public:
+  explicit Unpacker(const std::string& in) : in_(in) {}
+  template <class T>
+  T value() {
+    T v{};
+    take(&v, sizeof(T));
+    return v;
+  }
+  template <class T>
+  std::vector<T> vector() {
+    const auto n = value<std::uint64_t>();
+    if (n > (in_.size() - pos_) / sizeof(T)) throw std::runtime_error("truncated");
+    std::vector<T> v(n);
+    take(v.data(), n * sizeof(T));
+    return v;
+  }
+  std::string string() {
+    const auto n = value<std::uint64_t>();
+    if (n > in_.size() - pos_) throw std::runtime_error("truncated");
+    std::string s = in_.substr(pos_, n);
+    pos_ += n;
+    return s;
+  }
+  std::vector<std::string> strings() {
+    const auto n = value<std::uint64_t>();
+    if (n > in_.size() - pos_) throw std::runtime_error("truncated");
+    std::vector<std::string> v;
+    for (std::uint64_t i = 0; i < n; ++i) v.push_back(string());
+    return v;
+  }
+  bool at_end() const { return pos_ == in_.size(); }
+
+private:
+  void take(void* to, std::size_t n) {
+    if (n > in_.size() - pos_) throw std::runtime_error("truncated");
+    std::memcpy(to, in_.data() + pos_, n);
+    pos_ += n;
+  }
+  const std::string& in_;
+  std::size_t pos_ = 0;
+};
+
+std::string pack(const PolygonSoup& soup) {
+  Packer p;
+  p.value<std::uint8_t>(0);
+  p.vector(soup.x);
+  p.vector(soup.y);
+  p.vector(soup.polygon_begin);
+  p.vector(soup.polygon_points);
+  p.vector(soup.polygon_region);
+  p.strings(soup.region_names);
+  p.value<std::uint64_t>(soup.tagged_edges.size());
+  for (const auto& e : soup.tagged_edges) {
+    p.value(e.a);
+    p.value(e.b);
+    p.value(e.tag);
+  }
+  p.strings(soup.tag_names);
+  p.string(soup.source);
+  return p.bytes();
+}
+
+PolygonSoup unpack(const std::string& bytes) {
+  Unpacker u(bytes);
+  if (u.value<std::uint8_t>() != 0) throw Error(u.string());
+  PolygonSoup soup;
+  soup.x = u.vector<double>();
+  soup.y = u.vector<double>();
+  soup.polygon_begin = u.vector<std::int64_t>();
+  soup.polygon_points = u.vector<std::int64_t>();
+  soup.polygon_region = u.vector<int>();
+  soup.region_names = u.strings();
+  const auto nedges = u.value<std::uint64_t>();
+  if (nedges > bytes.size()) throw std::runtime_error("truncated");
+  for (std::uint64_t e = 0; e < nedges; ++e) {
+    TaggedEdge edge;
+    edge.a = u.value<std::int64_t>();
+    edge.b = u.value<std::int64_t>();
+    edge.tag = u.value<int>();
+    soup.tagged_edges.push_back(edge);
+  }
+  soup.tag_names = u.strings();
+  soup.source = u.string();
+  if (!u.at_end()) throw std::runtime_error("trailing data");
+  return soup;
+}
+
+bool write_all(int fd, const std::string& bytes) {
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    done += static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+/// Runs `read` (which returns a soup) in a gmsh session in a child process.
+template <class Read>
+PolygonSoup read_isolated(const std::string& path, Read read) {
+  const char* in_process = std::getenv("STAGGER_GMSH_IN_PROCESS");
+  if (in_process && *in_process && *in_process != '0') return with_gmsh(path, read);
+  // Hold the gmsh lock across the fork: no other thread is inside gmsh, and the child
+  // (whose only thread is this one) must not lock it again.
+  std::lock_guard lock(gmsh_mutex());
+  int fds[2];
+  if (::pipe(fds) != 0) throw Error("cannot read " + path + ": pipe() failed");
+  std::fflush(nullptr);  // nothing buffered is written twice
+  const pid_t child = ::fork();
+  if (child < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    throw Error("cannot read " + path + ": fork() failed");
+  }
+  if (child == 0) {
+    ::close(fds[0]);
+    std::string message;
+    try {
+      message = pack(in_gmsh_session(path, read));
+    } catch (const Error& failure) {
+      Packer p;
+      p.value<std::uint8_t>(1);
+      p.string(failure.what());
+      message = p.bytes();
+    } catch (...) {
+      Packer p;
+      p.value<std::uint8_t>(1);
+      p.string("gmsh failed on " + path + ": unexpected exception");
+      message = p.bytes();
+    }
+    ::_exit(write_all(fds[1], message) ? 0 : 3);  // no atexit handlers, no stdio flush
+  }
+  ::close(fds[1]);
+  std::string bytes;
+  char buffer[65536];
+  for (;;) {
+    const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    bytes.append(buffer, static_cast<std::size_t>(n));
+  }
+  ::close(fds[0]);
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFSIGNALED(status))
+    throw Error("gmsh crashed (signal " + std::to_string(WTERMSIG(status)) + ", " + strsignal(WTERMSIG(status)) +
+                ") reading " + path +
+                ": the file is corrupt (e.g. an element refers to a node that $Nodes does not define); "
+                "check it with 'gmsh " + path + " -0' or re-export it");
+  try {
+    return unpack(bytes);
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception&) {
+    throw Error("gmsh failed reading " + path + ": the reader process ended early (exit status " +
+                std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")");
   }
 }
 
 void throw_if_gmsh_error(const std::string& path, const std::string& doing) {
   const std::string logged = GmshSession::errors();
-  if (!logged.empty()) throw Error("gmsh failed " + doing + " " + path + ": " + logged);
+  if (!logged.empty())
+    throw Error("gmsh failed " + doing + " " + path + ": " + logged +
+                (doing == "reading" ? "; fix the file (STAGGER_GMSH_VERBOSE=1 shows gmsh's messages)" : ""));
 }
 
 void require_file(const std::string& path, const std::string& what) {
@@ -385,7 +599,7 @@ PolygonSoup read_geo(const std::string& path, const GeoOptions& options) {
 
 PolygonSoup read_msh(const std::string& path, TrianglePolicy triangles) {
   require_file(path, "mesh file");
-  PolygonSoup soup = with_gmsh(path, [&] {
+  PolygonSoup soup = read_isolated(path, [&] {
     gmsh::open(path);
     throw_if_gmsh_error(path, "reading");
     if (triangles == TrianglePolicy::subdivide) {

@@ -80,6 +80,12 @@ std::vector<std::string> check_structure(const PolygonSoup& soup) {
                 "of polygon_points");
   const std::size_t npoly = soup.num_polygons();
   if (npoly == 0) throw Error("empty mesh: " + src + " has no zones");
+  // Offsets must not decrease, or a zone would reach past polygon_points (found by fuzzing).
+  for (std::size_t f = 0; f < npoly; ++f)
+    if (soup.polygon_begin[f + 1] < soup.polygon_begin[f])
+      throw Error("polygon soup " + src + ": polygon_begin decreases at zone " + std::to_string(f) +
+                  " (" + std::to_string(soup.polygon_begin[f]) + " then " +
+                  std::to_string(soup.polygon_begin[f + 1]) + "); offsets must be non-decreasing");
   if (!soup.polygon_region.empty() && soup.polygon_region.size() != npoly)
     throw Error("polygon soup " + src + ": polygon_region has " +
                 std::to_string(soup.polygon_region.size()) + " entries for " +
@@ -111,6 +117,13 @@ std::vector<std::string> check_structure(const PolygonSoup& soup) {
     if (region < 0)
       throw Error("zone " + std::to_string(f) + " of " + src + " has negative region " +
                   std::to_string(region));
+    // Unnamed regions are allowed (named region_<i>), but an index far beyond the names
+    // and the zone count is corruption, and would allocate that many names.
+    const std::size_t region_limit = soup.region_names.size() + npoly;
+    if (static_cast<std::size_t>(region) >= region_limit)
+      throw Error("zone " + std::to_string(f) + " of " + src + " has region index " +
+                  std::to_string(region) + ", beyond the " + std::to_string(soup.region_names.size()) +
+                  " region names and " + std::to_string(npoly) + " zones; check polygon_region");
     max_region = std::max(max_region, region);
   }
   std::vector<std::string> names = soup.region_names;
@@ -180,7 +193,12 @@ void check_zone_geometry(const PolygonSoup& soup) {
       const double dx = soup.x[b] - soup.x[a], dy = soup.y[b] - soup.y[a];
       longest2 = std::max(longest2, dx * dx + dy * dy);
     }
-    if (std::abs(0.5 * twice_area) <= 1e-12 * longest2)
+    // Coordinates near the largest double overflow the shoelace sum (found by fuzzing):
+    // NaN compares false, so test finiteness first.
+    if (!std::isfinite(twice_area) || !std::isfinite(longest2))
+      throw Error(zone + " is so large that its area overflows (coordinates of magnitude near 1e308): " +
+                  zone_points_text(soup, f) + "; rescale the mesh");
+    if (!(std::abs(0.5 * twice_area) > 1e-12 * longest2))
       throw Error(zone + " has zero area (its points are collinear or it folds onto itself): " +
                   zone_points_text(soup, f));
     if (const std::string edges = find_pair(segments_touch); !edges.empty())
@@ -211,7 +229,9 @@ Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options,
     if (non_quads > 0)
       throw Error("quads only: " + std::to_string(non_quads) + " of " + std::to_string(npoly) +
                   " zones of " + soup.source + " are not quadrilaterals (first: zone " +
-                  std::to_string(first) + "); use a triangle policy that subdivides");
+                  std::to_string(first) + ": " + zone_points_text(soup, first) +
+                  "); use the triangle policy 'subdivide' (scene: triangles = \"subdivide\"; "
+                  "stagger mesh --triangles subdivide) or allow mixed zones");
   }
 
   // Orphan points are dropped; the others keep their relative order.

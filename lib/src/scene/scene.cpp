@@ -39,12 +39,51 @@ void check_finite(Section& section, const Section::ValueOrExpression& value, con
   for (const auto& point : points) {
     const double v = value.constant ? *value.constant : (*value.expression)(point[0], point[1]);
     if (!std::isfinite(v))
-      section.fail_at(value.node, key_label, "evaluates to " + std::to_string(v) + " at " + point_text(point[0], point[1]),
+      section.fail_at(value.node, key_label, "evaluates to " + show(v) + " at " + point_text(point[0], point[1]),
                       "guard divisions and roots, e.g. with ?:");
     if (in_range && !in_range(v))
       section.fail_at(value.node, key_label,
-                      "must be " + range_text + ", got " + std::to_string(v) + " at " + point_text(point[0], point[1]));
+                      "must be " + range_text + ", got " + show(v) + " at " + point_text(point[0], point[1]));
     if (value.constant) break;  // a constant needs one check
+  }
+}
+
+// The initial state must lie in the EOS's domain at every zone centre, checked here (not
+// only at set-up in the core) so that `stagger check` reports it with the file and key.
+void check_eos_domain(Section& section, const Material& material, const Section::ValueOrExpression& density,
+                      const Section::ValueOrExpression& thermal, bool has_pressure, const char* thermal_key,
+                      const std::vector<std::array<double, 2>>& centres) {
+  const auto value = [](const Section::ValueOrExpression& v, const std::array<double, 2>& at) {
+    return v.constant ? *v.constant : (*v.expression)(at[0], at[1]);
+  };
+  for (const auto& centre : centres) {
+    const double rho = value(density, centre), given = value(thermal, centre);
+    if (const auto* mg = std::get_if<MieGruneisen>(&material.eos)) {
+      // Paper eq. (6): the Hugoniot term has 1 - s eta in its denominator, eta = 1 - rho0/rho.
+      const double eta = 1 - mg->rho0 / rho;
+      if (!(1 - mg->s * eta > 0))
+        section.fail_at(density.node, section.key_path("density"),
+                        "density " + show(rho) + " at " + point_text(centre[0], centre[1]) +
+                            " is outside the Mie-Gruneisen domain of material '" + material.name + "' (1 - s eta = " +
+                            show(1 - mg->s * eta) + " <= 0; rho must stay below rho0 s / (s - 1) = " +
+                            show(mg->s > 1 ? mg->rho0 * mg->s / (mg->s - 1) : std::numeric_limits<double>::infinity()) + ")",
+                        "lower the density or check rho0 and s");
+    }
+    std::string problem;
+    try {
+      const double e = has_pressure ? eos_energy_from_pressure(material.eos, rho, given) : given;
+      if (!std::isfinite(e)) problem = "gives a non-finite specific internal energy";
+      else if (!(eos_sound_speed_squared(material.eos, rho, e) > 0) && !std::holds_alternative<IdealGas>(material.eos))
+        problem = "gives a non-positive sound speed squared";
+    } catch (const Error& failure) {
+      problem = std::string("is outside the domain (") + failure.what() + ")";
+    }
+    if (!problem.empty())
+      section.fail_at(thermal.node, section.key_path(thermal_key),
+                      "the state rho = " + show(rho) + ", " + thermal_key + " = " + show(given) + " at " +
+                          point_text(centre[0], centre[1]) + " " + problem + " of material '" + material.name +
+                          "' (" + eos_kind(material.eos) + ")",
+                      "check the initial state and the EOS constants");
   }
 }
 
@@ -76,14 +115,14 @@ Material read_material(Section& section) {
   material.name = section.string("name");
   auto positive = [&](const char* key) {
     const double value = section.number(key);
-    if (!(value > 0)) section.fail(key, "must be > 0, got " + std::to_string(value));
+    if (!(value > 0)) section.fail(key, "must be > 0, got " + show(value));
     return value;
   };
   const std::string eos = section.choice("eos", {"ideal_gas", "mie_gruneisen", "jwl"});
   if (eos == "ideal_gas") {
     IdealGas gas;
     gas.gamma = section.number("gamma");
-    if (!(gas.gamma > 1)) section.fail("gamma", "must be > 1, got " + std::to_string(gas.gamma));
+    if (!(gas.gamma > 1)) section.fail("gamma", "must be > 1, got " + show(gas.gamma));
     material.eos = gas;
   } else if (eos == "mie_gruneisen") {
     MieGruneisen mg;
@@ -197,6 +236,7 @@ void read_regions(Section& root, const Mesh& mesh, Problem& problem) {
     else
       check_finite(section, thermal, section.key_path(thermal_key), centres);
     (has_pressure ? setup.pressure : setup.specific_internal_energy) = to_space_function(thermal);
+    check_eos_domain(section, material, density, thermal, has_pressure, thermal_key, centres);
 
     if (const toml::node* velocity = section.find("velocity")) {
       const auto* array = velocity->as_array();
@@ -253,7 +293,7 @@ void read_boundaries(Section& root, const Mesh& mesh, double t_end, Problem& pro
     if (value.constant) return;
     for (double t : sample_times)
       if (!std::isfinite((*value.expression)(t)))
-        section.fail_at(value.node, label, "not finite at t = " + std::to_string(t), "guard the expression");
+        section.fail_at(value.node, label, "not finite at t = " + show(t), "guard the expression");
   };
 
   for (auto& section : root.table_array("boundary")) {
@@ -318,9 +358,9 @@ void read_numerics(Section& section, HydroOptions& options) {
     const bool ok = (low_open ? value > low : value >= low) && (high_open ? value < high : value <= high);
     if (!ok) {
       std::ostringstream range;
-      range << (low_open ? "(" : "[") << low << ", " << (std::isinf(high) ? "inf" : std::to_string(high))
+      range << (low_open ? "(" : "[") << show(low) << ", " << show(high)
             << (high_open ? ")" : "]");
-      section.fail(key, "must be in " + range.str() + ", got " + std::to_string(value));
+      section.fail(key, "must be in " + range.str() + ", got " + show(value));
     }
     return value;
   };
@@ -400,7 +440,7 @@ Scene load_scene(const std::string& path, const std::vector<std::pair<std::strin
   auto time = root.subtable("time");
   if (!time) root.fail("time", "missing: every scene needs [time] with end", "add [time] end = ...");
   problem.t_end = time->number("end");
-  if (!(problem.t_end > 0)) time->fail("end", "must be > 0, got " + std::to_string(problem.t_end));
+  if (!(problem.t_end > 0)) time->fail("end", "must be > 0, got " + show(problem.t_end));
   time->finish();
 
   auto mesh = root.subtable("mesh");

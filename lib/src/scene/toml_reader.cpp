@@ -1,5 +1,7 @@
 #include "toml_reader.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <sstream>
 
@@ -29,6 +31,33 @@ std::string type_name(const toml::node& node) {
   }
 }
 
+std::string show(double value) {
+  if (std::isnan(value)) return "NaN";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  std::ostringstream out;
+  out.precision(10);
+  out << value;
+  return out.str();
+}
+
+namespace {
+// Levenshtein distance, to suggest the key a typo was meant to be.
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+}  // namespace
+
 Section::Section(std::string file, const toml::table& table, std::string path)
     : file_(std::move(file)), table_(&table), path_(std::move(path)) {}
 
@@ -56,6 +85,17 @@ const toml::node& Section::require(std::string_view key) {
   const toml::node* node = find(key);
   if (node == nullptr) {
     std::string section = path_.empty() ? "the top level" : "[" + path_ + "]";
+    // A missing key is often a misspelt one: name an unread key one or two edits away
+    // (not for one-letter keys, nor pairs such as R1/R2 that differ in a final digit).
+    for (const auto& [other, other_node] : *table_) {
+      const std::string_view name = other.str();
+      const bool digit_pair = name.size() == key.size() && name.substr(0, name.size() - 1) == key.substr(0, key.size() - 1) &&
+                              std::isdigit(static_cast<unsigned char>(name.back())) != 0;
+      if (key.size() >= 2 && known_.count(name) == 0 && !digit_pair &&
+          edit_distance(name, key) <= std::max<std::size_t>(1, key.size() / 3))
+        fail_at(&other_node, key_path(key), "missing (is '" + std::string(name) + "' on this line a misspelling of it?)",
+                "rename it to '" + std::string(key) + "', or add the key to " + section);
+    }
     fail_at(nullptr, key_path(key), "missing", "add it to " + section + " (see docs/scenes.md)");
   }
   return *node;

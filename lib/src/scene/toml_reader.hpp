@@ -23,6 +23,10 @@ std::string where(const std::string& file, const toml::node* node, const toml::n
 /// Short type name of a node for messages ("string", "integer", "table", ...).
 std::string type_name(const toml::node& node);
 
+// A number for messages: 10 significant digits, "nan"/"inf" spelt out (not std::to_string's
+// fixed 6 decimals, which prints 1e-9 as 0.000000).
+std::string show(double value);
+
 class Section {
 public:
   Section(std::string file, const toml::table& table, std::string path);

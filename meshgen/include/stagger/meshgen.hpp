@@ -19,10 +19,11 @@ enum class TrianglePolicy {
   reject,     ///< stagger::Error naming the file and the number of triangles
 };
 
+/// How read_geo meshes a .geo file.
 struct GeoOptions {
   std::vector<std::pair<std::string, double>> parameters;  ///< like gmsh -setnumber
-  bool recombine = true;
-  TrianglePolicy triangles = TrianglePolicy::accept;
+  bool recombine = true;                              ///< recombine triangles into quads
+  TrianglePolicy triangles = TrianglePolicy::accept;  ///< what to do with leftover triangles
 };
 
 /// Meshes a .geo file with gmsh; physical surfaces become regions, physical curves tags.

@@ -307,7 +307,7 @@ TEST_F(SceneFile, ClockwiseGeoIsRepairedWithANote) {
   // An absolute path also works: it is joined to the scene's directory by path rules.
   const stagger::Scene scene = stagger::load_scene(path);
   ASSERT_FALSE(scene.notes.empty());
-  EXPECT_CONTAINS(scene.notes.front(), "reoriented");
+  EXPECT_CONTAINS(scene.notes.front(), "were clockwise and were reversed");
 }
 
 TEST_F(SceneFile, PeriodicPartnersCoverBothTags) {
@@ -351,7 +351,13 @@ TEST(Scenes, EveryExampleSceneLoadsAndValidates) {
     EXPECT_EQ(scene.problem.name, entry.path().stem().string());
     EXPECT_GT(scene.problem.t_end, 0);
     EXPECT_GT(scene.problem.mesh.num_zones(), 0);
-    EXPECT_TRUE(static_cast<bool>(scene.control.reference)) << "every example scene has a [verification]";
+    // The verification problems carry their reference; demonstrations (he_plate,
+    // elastic_wave) may have none.
+    const std::set<std::string> verification = {"sod",   "noh",      "noh_polar", "sedov",    "saltzman",
+                                                "smooth", "piston",   "be_shell",  "accuracy", "detonation"};
+    if (verification.count(entry.path().stem().string())) {
+      EXPECT_TRUE(static_cast<bool>(scene.control.reference)) << "a verification scene has a [verification]";
+    }
     // Every scene is on a ladder: mesh.refine = 2 must give more zones.
     const stagger::Scene finer = stagger::load_scene(entry.path().string(), {{"mesh.refine", "2"}});
     EXPECT_GT(finer.problem.mesh.num_zones(), scene.problem.mesh.num_zones());

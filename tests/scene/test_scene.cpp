@@ -307,7 +307,7 @@ TEST_F(SceneFile, ClockwiseGeoIsRepairedWithANote) {
   // An absolute path also works: it is joined to the scene's directory by path rules.
   const stagger::Scene scene = stagger::load_scene(path);
   ASSERT_FALSE(scene.notes.empty());
-  EXPECT_CONTAINS(scene.notes.front(), "were clockwise and were reversed");
+  EXPECT_CONTAINS(scene.notes.front(), "zones were clockwise");
 }
 
 TEST_F(SceneFile, PeriodicPartnersCoverBothTags) {

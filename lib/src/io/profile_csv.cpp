@@ -1,0 +1,100 @@
+// Zone profiles as CSV (write_zone_csv): one row per zone, for figure scripts that plot
+// numerical against exact profiles (scripts/verification, docs/verification.md).
+#include <cmath>
+#include <cstddef>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "stagger/output.hpp"
+#include "stagger/simulation.hpp"
+#include "text_format.hpp"
+
+namespace stagger {
+
+namespace {
+
+struct Column {
+  const char* name;
+  std::span<const double> values;
+};
+
+}  // namespace
+
+void write_zone_csv(const std::string& path, const Simulation& simulation) {
+  using io_detail::format_double;
+  const Mesh& mesh = simulation.mesh();
+  const auto nzones = static_cast<std::size_t>(mesh.num_zones());
+  const auto x = simulation.x();
+  const auto y = simulation.y();
+  const auto vx = simulation.velocity_x();
+  const auto vy = simulation.velocity_y();
+
+  // Zone centre = vertex average (NUMERICS section 1); velocity = mean of the zone's points
+  // (the staggered scheme has no zone velocity; this is for plotting only).
+  std::vector<double> cx(nzones), cy(nzones), ux(nzones), uy(nzones);
+  for (std::size_t z = 0; z < nzones; ++z) {
+    const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
+    double sx = 0, sy = 0, su = 0, sv = 0;
+    for (Index c = begin; c < end; ++c) {
+      const auto p = static_cast<std::size_t>(mesh.corner_point[static_cast<std::size_t>(c)]);
+      sx += x[p];
+      sy += y[p];
+      su += vx[p];
+      sv += vy[p];
+    }
+    const double n = static_cast<double>(end - begin);
+    cx[z] = sx / n;
+    cy[z] = sy / n;
+    ux[z] = su / n;
+    uy[z] = sv / n;
+  }
+
+  std::vector<Column> columns = {{"area", simulation.zone_area()},
+                                 {"density", simulation.density()},
+                                 {"pressure", simulation.pressure()},
+                                 {"specific_internal_energy", simulation.specific_internal_energy()},
+                                 {"velocity_x", ux},
+                                 {"velocity_y", uy},
+                                 {"artificial_viscosity", simulation.artificial_viscosity()},
+                                 {"sound_speed", simulation.sound_speed()}};
+  std::vector<double> von_mises;
+  if (simulation.has_strength() && simulation.stress_xx().size() == nzones) {
+    const auto sxx = simulation.stress_xx(), syy = simulation.stress_yy(), sxy = simulation.stress_xy();
+    von_mises.resize(nzones);
+    for (std::size_t z = 0; z < nzones; ++z) {
+      // sqrt(3/2 S:S) with the out-of-plane S_zz = -(S_xx + S_yy) (NUMERICS section 4).
+      const double szz = -(sxx[z] + syy[z]);
+      von_mises[z] = std::sqrt(1.5 * (sxx[z] * sxx[z] + syy[z] * syy[z] + szz * szz + 2.0 * sxy[z] * sxy[z]));
+    }
+    columns.push_back({"deviatoric_stress_xx", sxx});
+    columns.push_back({"deviatoric_stress_yy", syy});
+    columns.push_back({"deviatoric_stress_xy", sxy});
+    columns.push_back({"von_mises", von_mises});
+    if (simulation.plastic_strain().size() == nzones) columns.push_back({"plastic_strain", simulation.plastic_strain()});
+  }
+  if (simulation.has_burn() && simulation.burn_fraction().size() == nzones)
+    columns.push_back({"burn_fraction", simulation.burn_fraction()});
+
+  std::string text = "zone,region,x,y,r";
+  for (const auto& column : columns) text += std::string(",") + column.name;
+  text += '\n';
+  text.reserve(text.size() + nzones * 24 * (columns.size() + 5));
+  for (std::size_t z = 0; z < nzones; ++z) {
+    text += std::to_string(z);
+    text += ',';
+    text += mesh.region_names[static_cast<std::size_t>(mesh.zone_region[z])];
+    for (const double value : {cx[z], cy[z], std::hypot(cx[z], cy[z])}) {
+      text += ',';
+      text += format_double(value);
+    }
+    for (const auto& column : columns) {
+      text += ',';
+      text += format_double(column.values[z]);
+    }
+    text += '\n';
+  }
+  write_file_atomically(path, text);
+}
+
+}  // namespace stagger

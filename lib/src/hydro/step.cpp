@@ -113,6 +113,7 @@ std::int64_t force_zones(Simulation::Impl& s, const ZoneRange& r, const Eos& eos
   const bool objective = o.stress_update == StressUpdate::objective;
   const double hg = o.hourglass_coefficient;
   const bool fb = o.hourglass == Hourglass::flanagan_belytschko;
+  const auto* energy_source = s.problem.sources && s.problem.sources->energy ? &s.problem.sources->energy : nullptr;
   std::int64_t failure = kNoFailure;
 
 #pragma omp parallel for schedule(static) reduction(min : failure) if (r.end - r.begin > kParallelMin)
@@ -146,7 +147,14 @@ std::int64_t force_zones(Simulation::Impl& s, const ZoneRange& r, const Eos& eos
       wx[k] = pass.qvx[p];
       wy[k] = pass.qvy[p];
     }
-    const double e_half = s.e[z] - pass.dt_half * work / mass;
+    double e_half = s.e[z] - pass.dt_half * work / mass;
+    if (energy_source && pass.dt_half > 0) {
+      // The predictor integrates the energy source too (at the middle of [t^n, t^{n+1/2}]),
+      // or the scheme drops to first order in time; the audit counts only step 7's source.
+      double cx = 0, cy = 0;
+      for (int k = 0; k < n; ++k) cx += v.x[k] / n, cy += v.y[k] / n;
+      e_half += pass.dt_half * (*energy_source)(cx, cy, pass.t_eval - 0.5 * pass.dt_half);
+    }
     Deviator sh;
     if (m.strength) {
       // S^{n+1/2} = return(S^n + dt/2 dS/dt(S^n, L(v^n) on x^n)).

@@ -103,9 +103,12 @@ struct FrontCrossing {
   double position = 0;
   int crossings = 0;
 };
+/// Crossings whose interpolated position is below `min_position` are ignored (e.g. the
+/// wall-heating dip at the Noh centre, which crosses the threshold too).
 FrontCrossing front_crossing(const Mesh& mesh, std::span<const double> x, std::span<const double> y,
                              std::span<const double> field, double threshold,
-                             const std::function<double(double, double)>& coordinate);
+                             const std::function<double(double, double)>& coordinate,
+                             double min_position = -1e300);
 
 /// Groups indices whose values agree within `tolerance` (values sorted, consecutive values
 /// closer than the tolerance chained into one group). Used for "rings" and "columns".

@@ -143,7 +143,7 @@ void point_velocity_errors(const Simulation& simulation,
 
 FrontCrossing front_crossing(const Mesh& mesh, std::span<const double> x, std::span<const double> y,
                              std::span<const double> field, double threshold,
-                             const std::function<double(double, double)>& coordinate) {
+                             const std::function<double(double, double)>& coordinate, double min_position) {
   if (field.size() != static_cast<std::size_t>(mesh.num_zones()))
     throw Error("front_crossing: the field does not have one value per zone");
   const auto centres = zone_centres(mesh, x, y);
@@ -170,8 +170,11 @@ FrontCrossing front_crossing(const Mesh& mesh, std::span<const double> x, std::s
     const Index outer = inner == z0 ? z1 : z0;
     if (field[inner] >= threshold && field[outer] < threshold) {
       const double fraction = (field[inner] - threshold) / (field[inner] - field[outer]);
-      sum += position[inner] + fraction * (position[outer] - position[inner]);
-      ++front.crossings;
+      const double crossing = position[inner] + fraction * (position[outer] - position[inner]);
+      if (crossing >= min_position) {
+        sum += crossing;
+        ++front.crossings;
+      }
     }
     ++i;  // the pair is consumed
   }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "hydro/boundary.hpp"
@@ -48,9 +49,14 @@ void setup_edge_continuation(Simulation::Impl& s) {
   // Ratio used where an edge has no neighbour: 1 (mirror image) at walls, symmetry planes,
   // pistons and periodic sides; 0 at free and pressure boundaries (NUMERICS section 7).
   std::map<std::pair<Index, Index>, float> boundary_ratio;
+  std::set<std::pair<Index, Index>> mirror_edges;  // walls, symmetry planes, pistons
   for (const auto& bc : s.problem.boundaries) {
     const float r = (bc.kind == BoundaryKind::free || bc.kind == BoundaryKind::pressure) ? 0.f : 1.f;
-    for (const auto& e : m.tags[m.tag_index(bc.tag)].edges) boundary_ratio[{e[0], e[1]}] = r;
+    const bool mirror = bc.kind == BoundaryKind::wall || bc.kind == BoundaryKind::velocity;
+    for (const auto& e : m.tags[m.tag_index(bc.tag)].edges) {
+      boundary_ratio[{e[0], e[1]}] = r;
+      if (mirror) mirror_edges.insert({e[0], e[1]});
+    }
   }
   // The vertex of zone zn adjacent to point p other than `other`.
   auto other_neighbour = [&](Index zn, Index p, Index other) -> Index {
@@ -75,6 +81,7 @@ void setup_edge_continuation(Simulation::Impl& s) {
       } else {
         auto r = boundary_ratio.find({p1, p2});
         ec.ahead_ratio = r == boundary_ratio.end() ? 0.f : r->second;
+        if (mirror_edges.count({p1, p2})) ec.ahead_wall = p2;
       }
       // Behind: beyond p0, in the zone across edge (pm, p0).
       if (auto it = edge_zone.find({p0, pm}); it != edge_zone.end()) {
@@ -82,6 +89,7 @@ void setup_edge_continuation(Simulation::Impl& s) {
       } else {
         auto r = boundary_ratio.find({pm, p0});
         ec.behind_ratio = r == boundary_ratio.end() ? 0.f : r->second;
+        if (mirror_edges.count({pm, p0})) ec.behind_wall = pm;
       }
     }
   }

@@ -37,6 +37,9 @@ struct PressureEdge {
 // edge beyond each end, or -1 with the ratio to use (1 mirror wall, 0 free).
 struct EdgeContinuation {
   Index ahead = -1, behind = -1;
+  // At a wall or symmetry plane the continuation is the mirror image of the edge across
+  // the wall edge (ahead: p1-ahead_wall, behind: behind_wall-p0); -1 where not a wall.
+  Index ahead_wall = -1, behind_wall = -1;
   float ahead_ratio = 0, behind_ratio = 0;
 };
 

@@ -257,8 +257,34 @@ void edge_viscosity_forces(Simulation::Impl& s, const ForcePass& pass) {
             const double l2 = std::hypot(px[c] - px[a], py[c] - py[a]);
             return ((wx[c] - wx[a]) * gx + (wy[c] - wy[a]) * gy) / (l2 * gg);
           };
-          const double ra = ec.ahead >= 0 ? ratio(p1, ec.ahead, 0) : ec.ahead_ratio;
-          const double rb = ec.behind >= 0 ? ratio(ec.behind, p0, 0) : ec.behind_ratio;
+          // Mirror image across a wall edge (a, b): reflect vectors in the wall's normal.
+          auto mirrored = [&](Index a, Index wall_end, double dx, double dy, double ux, double uy, double& rux,
+                              double& ruy) {
+            double nx = py[wall_end] - py[a], ny = px[a] - px[wall_end];
+            const double nn = std::sqrt(nx * nx + ny * ny);
+            nx /= nn, ny /= nn;
+            const double du_n = ux * nx + uy * ny;
+            rux = ux - 2 * du_n * nx, ruy = uy - 2 * du_n * ny;
+            return std::sqrt(dx * dx + dy * dy);
+          };
+          double ra = ec.ahead_ratio, rb = ec.behind_ratio;
+          if (ec.ahead >= 0) {
+            ra = ratio(p1, ec.ahead, 0);
+          } else if (ec.ahead_wall >= 0) {
+            // Continuation p1 -> mirror of p0: du = R(v0) - v1, length |p0 - p1|.
+            double rvx, rvy;
+            const double l2 = mirrored(p1, ec.ahead_wall, px[p0] - px[p1], py[p0] - py[p1], wx[p0], wy[p0], rvx, rvy);
+            ra = ((rvx - wx[p1]) * gx + (rvy - wy[p1]) * gy) / (l2 * gg);
+          }
+          if (ec.behind >= 0) {
+            rb = ratio(ec.behind, p0, 0);
+          } else if (ec.behind_wall >= 0) {
+            // Continuation mirror of p1 -> p0: du = v0 - R(v1), length |p1 - p0|.
+            double rvx, rvy;
+            const double l2 =
+                mirrored(ec.behind_wall, p0, px[p1] - px[p0], py[p1] - py[p0], wx[p1], wy[p1], rvx, rvy);
+            rb = ((wx[p0] - rvx) * gx + (wy[p0] - rvy) * gy) / (l2 * gg);
+          }
           psi = std::max(0.0, std::min({0.5 * (ra + rb), 2 * ra, 2 * rb, 1.0}));
         }
         if (psi >= 1) continue;

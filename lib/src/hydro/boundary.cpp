@@ -169,6 +169,12 @@ void apply_constraints(const Simulation::Impl& s, std::span<double> vx, std::spa
     const auto& bc = s.problem.boundaries[s.velocity_bcs[i]];
     uxp[i] = bc.velocity_x(t);
     uyp[i] = bc.velocity_y(t);
+    if (!std::isfinite(uxp[i]) || !std::isfinite(uyp[i])) {
+      std::ostringstream msg;
+      msg << "boundary '" << bc.tag << "': the prescribed velocity is not finite at t = " << t << " ("
+          << uxp[i] << ", " << uyp[i] << "): fix its expression";
+      throw Error(msg.str());
+    }
   }
   for (const auto& c : s.constraints) {
     double g[2];
@@ -194,6 +200,12 @@ void add_pressure_forces(const Simulation::Impl& s, std::span<const double> x, s
                          double t, std::span<double> fx, std::span<double> fy) {
   for (const auto& edge : s.pressure_edges) {
     const double p = s.problem.boundaries[edge.bc].pressure(t);
+    if (!std::isfinite(p)) {
+      std::ostringstream msg;
+      msg << "boundary '" << s.problem.boundaries[edge.bc].tag << "': the applied pressure is not finite at t = " << t
+          << " (" << p << "): fix its expression";
+      throw Error(msg.str());
+    }
     const double dx = x[edge.b] - x[edge.a], dy = y[edge.b] - y[edge.a];
     // -p times the outward normal times the length, half to each end point.
     const double gx = -0.5 * p * dy, gy = 0.5 * p * dx;

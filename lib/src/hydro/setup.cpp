@@ -194,6 +194,8 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
       if (setup.stress_xx) sxx[z] = setup.stress_xx(cx, cy);
       if (setup.stress_yy) syy[z] = setup.stress_yy(cx, cy);
       if (setup.stress_xy) sxy[z] = setup.stress_xy(cx, cy);
+      if (!std::isfinite(sxx[z]) || !std::isfinite(syy[z]) || !std::isfinite(sxy[z]))
+        throw Error("region '" + setup.region + "': initial deviatoric stress is not finite in " + zone_label(m, z));
     }
   }
   for (Index p = 0; p < np; ++p) {

@@ -114,7 +114,7 @@ struct Writer {
   }
   void array(const std::vector<double>& v) {
     value<std::uint64_t>(v.size());
-    out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(double));
+    if (!v.empty()) out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(double));
   }
 };
 
@@ -138,7 +138,7 @@ struct Reader {
       throw Error(msg.str());
     }
     if (pos + n * sizeof(double) > in.size()) throw Error("checkpoint is truncated");
-    std::memcpy(v.data(), in.data() + pos, n * sizeof(double));
+    if (n > 0) std::memcpy(v.data(), in.data() + pos, n * sizeof(double));  // empty fields: no pointer
     pos += n * sizeof(double);
   }
 };

@@ -63,11 +63,13 @@ struct RangeModel {
   bool strength = false;
   const Burn* burn = nullptr;
   double rho0_burn = 0, edge_gamma_factor = 0.5;
+  double min_energy = -1e300;  // Material::min_energy: below it the run stops
 };
 
 RangeModel range_model(const Simulation::Impl& s, const ZoneRange& r) {
   RangeModel m;
   m.material = &s.problem.materials[r.material];
+  m.min_energy = m.material->min_energy;
   if (m.material->strength) {
     m.strength = true;
     m.mu = m.material->strength->shear_modulus;
@@ -317,7 +319,7 @@ template <int N, class Eos>
   if (!(area > 0) || (o.check_corner_areas && !(corner_areas<N>(v, ca) > 0))) return failure_code(z, kTangled);
   const double rho = s.zone_mass[z] / area;
   eos::PressureSound ps{};
-  if (!eos::evaluate(eos, rho, energy, ps)) return failure_code(z, kEosDomain);
+  if (!eos::evaluate(eos, rho, energy, ps) || energy < m.min_energy) return failure_code(z, kEosDomain);
   const double C = std::sqrt(std::max(ps.c2, 0.0) + (m.strength ? (4.0 / 3.0) * m.mu / rho : 0.0));
   s.area[z] = area;
   s.rho[z] = rho;
@@ -720,6 +722,8 @@ void Simulation::Impl::step(double t_stop) {
           << dt_taken << " after " << attempt << " retries";
       const Index tangled = find_tangled_zone(dt_taken);
       if (tangled >= 0) msg << "; " << describe_zone(*this, tangled);
+      msg << " (the mesh is folding there: add hourglass control, switch to the edge viscosity, lower the cfl or "
+             "refine the mesh; if the zone only turned non-convex, numerics.check_corner_areas = false)";
       throw Error(msg.str());
     }
     dt *= 0.5;

@@ -284,7 +284,7 @@ Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options,
   for (auto r : topo.reversed) rep.reoriented_zones += r;
   if (rep.reoriented_zones > 0)
     rep.notes.push_back(std::to_string(rep.reoriented_zones) + " of " + std::to_string(npoly) +
-                        " zones were clockwise and were reversed to counter-clockwise");
+                        " zones were clockwise and were reoriented counter-clockwise");
 
   Mesh mesh;
   mesh.source = soup.source;

@@ -78,18 +78,20 @@ void setup_edge_continuation(Simulation::Impl& s) {
       // Ahead: beyond p1, in the zone across edge (p1, p2) (it holds that edge as (p2, p1)).
       if (auto it = edge_zone.find({p2, p1}); it != edge_zone.end()) {
         ec.ahead = other_neighbour(it->second, p1, p2);
+      } else if (mirror_edges.count({p1, p2})) {
+        ec.ahead = mirror_code(p2);
       } else {
         auto r = boundary_ratio.find({p1, p2});
-        ec.ahead_ratio = r == boundary_ratio.end() ? 0.f : r->second;
-        if (mirror_edges.count({p1, p2})) ec.ahead_wall = p2;
+        ec.ahead = (r != boundary_ratio.end() && r->second > 0) ? kContinuationOpen : kContinuationFree;
       }
       // Behind: beyond p0, in the zone across edge (pm, p0).
       if (auto it = edge_zone.find({p0, pm}); it != edge_zone.end()) {
         ec.behind = other_neighbour(it->second, p0, pm);
+      } else if (mirror_edges.count({pm, p0})) {
+        ec.behind = mirror_code(pm);
       } else {
         auto r = boundary_ratio.find({pm, p0});
-        ec.behind_ratio = r == boundary_ratio.end() ? 0.f : r->second;
-        if (mirror_edges.count({pm, p0})) ec.behind_wall = pm;
+        ec.behind = (r != boundary_ratio.end() && r->second > 0) ? kContinuationOpen : kContinuationFree;
       }
     }
   }

@@ -33,14 +33,17 @@ struct PressureEdge {
 };
 
 // Neighbour information for the edge viscosity's Christensen limiter, per corner c (the
-// edge from corner_point[c] to the next point of the zone): the points that continue the
-// edge beyond each end, or -1 with the ratio to use (1 mirror wall, 0 free).
+// edge from corner_point[c] to the next point of the zone): what continues the edge beyond
+// each end. A point id (>= 0); kContinuationFree (ratio 0: free or pressure boundary);
+// kContinuationOpen (ratio 1: periodic side); or mirror_code(w): the edge ends on a wall,
+// symmetry plane or piston edge whose other end point is w, and the continuation is the
+// edge's mirror image in it.
+constexpr Index kContinuationFree = -1, kContinuationOpen = -2;
+constexpr Index mirror_code(Index wall_end) { return -3 - wall_end; }
+constexpr Index mirror_wall_end(Index code) { return -3 - code; }
+
 struct EdgeContinuation {
-  Index ahead = -1, behind = -1;
-  // At a wall or symmetry plane the continuation is the mirror image of the edge across
-  // the wall edge (ahead: p1-ahead_wall, behind: behind_wall-p0); -1 where not a wall.
-  Index ahead_wall = -1, behind_wall = -1;
-  float ahead_ratio = 0, behind_ratio = 0;
+  Index ahead = kContinuationFree, behind = kContinuationFree;
 };
 
 std::string describe_zone(const Simulation::Impl& s, Index z);

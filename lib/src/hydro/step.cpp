@@ -254,39 +254,27 @@ void edge_viscosity_forces(Simulation::Impl& s, const ForcePass& pass) {
           const double len = std::sqrt(dxx * dxx + dxy * dxy);
           const double gx = dux / len, gy = duy / len, gg = gx * gx + gy * gy;
           const EdgeContinuation& ec = s.continuation[b + k];
-          auto ratio = [&](Index a, Index c, float fallback) -> double {
-            if (a < 0) return fallback;
+          // Ratio of the gradient along the continuing edge a -> c to this edge's.
+          auto ratio = [&](Index a, Index c) -> double {
             const double l2 = std::hypot(px[c] - px[a], py[c] - py[a]);
             return ((wx[c] - wx[a]) * gx + (wy[c] - wy[a]) * gy) / (l2 * gg);
           };
-          // Mirror image across a wall edge (a, b): reflect vectors in the wall's normal.
-          auto mirrored = [&](Index a, Index wall_end, double dx, double dy, double ux, double uy, double& rux,
-                              double& ruy) {
-            double nx = py[wall_end] - py[a], ny = px[a] - px[wall_end];
-            const double nn = std::sqrt(nx * nx + ny * ny);
-            nx /= nn, ny /= nn;
-            const double du_n = ux * nx + uy * ny;
-            rux = ux - 2 * du_n * nx, ruy = uy - 2 * du_n * ny;
-            return std::sqrt(dx * dx + dy * dy);
+          // Mirror image in the wall edge (a, w), velocities relative to the wall point (a
+          // moving piston too): the continuing edge has du' = R(-du), so the ratio is
+          // -1 + 2 (du.n)^2 / |du|^2 (1 for an edge normal to the wall, -1 along it).
+          auto mirror_ratio = [&](Index a, Index w) -> double {
+            const double nx = py[w] - py[a], ny = px[a] - px[w];
+            const double dn = dux * nx + duy * ny;
+            return -1.0 + 2.0 * dn * dn / (du2 * (nx * nx + ny * ny));
           };
-          double ra = ec.ahead_ratio, rb = ec.behind_ratio;
-          if (ec.ahead >= 0) {
-            ra = ratio(p1, ec.ahead, 0);
-          } else if (ec.ahead_wall >= 0) {
-            // Continuation p1 -> mirror of p0: du = R(v0) - v1, length |p0 - p1|.
-            double rvx, rvy;
-            const double l2 = mirrored(p1, ec.ahead_wall, px[p0] - px[p1], py[p0] - py[p1], wx[p0], wy[p0], rvx, rvy);
-            ra = ((rvx - wx[p1]) * gx + (rvy - wy[p1]) * gy) / (l2 * gg);
-          }
-          if (ec.behind >= 0) {
-            rb = ratio(ec.behind, p0, 0);
-          } else if (ec.behind_wall >= 0) {
-            // Continuation mirror of p1 -> p0: du = v0 - R(v1), length |p1 - p0|.
-            double rvx, rvy;
-            const double l2 =
-                mirrored(ec.behind_wall, p0, px[p1] - px[p0], py[p1] - py[p0], wx[p1], wy[p1], rvx, rvy);
-            rb = ((wx[p0] - rvx) * gx + (wy[p0] - rvy) * gy) / (l2 * gg);
-          }
+          auto continuation_ratio = [&](Index code, Index from, Index to, Index wall_point) -> double {
+            if (code >= 0) return ratio(from, to);
+            if (code == kContinuationFree) return 0.0;
+            if (code == kContinuationOpen) return 1.0;
+            return mirror_ratio(wall_point, mirror_wall_end(code));
+          };
+          const double ra = continuation_ratio(ec.ahead, p1, ec.ahead, p1);
+          const double rb = continuation_ratio(ec.behind, ec.behind, p0, p0);
           psi = std::max(0.0, std::min({0.5 * (ra + rb), 2 * ra, 2 * rb, 1.0}));
         }
         if (psi >= 1) continue;

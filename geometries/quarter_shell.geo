@@ -33,34 +33,38 @@ outer0 = 11 + n_theta;
 // The straight sides are chains of n_r one-zone lines between explicit points too (gmsh
 // also spaces a transfinite Line by integrated length: 2e-14 off, measured), at the radii
 // ri + (ro - ri) j / n_r of meshgen::annulus_sector.
-// Start side (y = 0) points: 1000 + j; end side (x = 0): 2000 + j, j = 1 .. n_r - 1.
+// Start side (y = 0) points: sb + j; end side (x = 0): eb + j, j = 1 .. n_r - 1. The same
+// numbers serve the side lines. The bases grow with n_theta and n_r so that no id is used
+// twice at any resolution (a redefined entity crashes gmsh 4.8 with a double free).
+sb = 20 + 2 * n_theta;
+eb = sb + n_r + 1;
 start_lines[] = {};
 end_lines[] = {};
 For j In {1 : n_r - 1}
-  Point(1000 + j) = {ri + (ro - ri) * j / n_r, 0, 0};
-  Point(2000 + j) = {0, ri + (ro - ri) * j / n_r, 0};
+  Point(sb + j) = {ri + (ro - ri) * j / n_r, 0, 0};
+  Point(eb + j) = {0, ri + (ro - ri) * j / n_r, 0};
 EndFor
 For j In {0 : n_r - 1}
-  a = 1000 + j;
-  b = 1000 + j + 1;
+  a = sb + j;
+  b = sb + j + 1;
   If (j == 0)
     a = inner0;
   EndIf
   If (j == n_r - 1)
     b = outer0;
   EndIf
-  Line(1000 + j) = {a, b};  // start side, outward
-  start_lines[] += {1000 + j};
-  a = 2000 + n_r - j;
-  b = 2000 + n_r - j - 1;
+  Line(sb + j) = {a, b};  // start side, outward
+  start_lines[] += {sb + j};
+  a = eb + n_r - j;
+  b = eb + n_r - j - 1;
   If (j == 0)
     a = outer0 + n_theta;
   EndIf
   If (j == n_r - 1)
     b = inner0 + n_theta;
   EndIf
-  Line(2000 + j) = {a, b};  // end side, inward
-  end_lines[] += {2000 + j};
+  Line(eb + j) = {a, b};  // end side, inward
+  end_lines[] += {eb + j};
 EndFor
 // Outer arc counter-clockwise (curves 10 ..), inner arc clockwise (curves 10 + n_theta ..).
 outer_arcs[] = {};

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <chrono>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -250,10 +251,16 @@ int mesh_command(const std::vector<std::string>& args) {
     if (extension != ".msh" && extension != ".vtu")
       throw UsageError("-o '" + output + "': the output must end in .msh or .vtu");
   }
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
   const PolygonSoup soup = meshgen::read_mesh_file(input, options);
+  const auto t1 = Clock::now();
   MeshBuildReport report;
   const Mesh mesh = build_mesh(soup, {}, &report);
+  const auto t2 = Clock::now();
   const MeshQuality quality = mesh_quality(mesh);
+  const double read_seconds = std::chrono::duration<double>(t1 - t0).count();
+  const double build_seconds = std::chrono::duration<double>(t2 - t1).count();
 
   std::cout << "mesh " << input << ": " << mesh.num_zones() << " zones (" << quality.quads << " quads, "
             << quality.triangles << " triangles, " << quality.other_polygons << " other polygons), "
@@ -270,6 +277,9 @@ int mesh_command(const std::vector<std::string>& args) {
   if (report.reoriented_zones > 0) std::cout << "note: " << report.reoriented_zones << " zones reoriented to CCW\n";
   if (report.dropped_points > 0) std::cout << "note: " << report.dropped_points << " unused points dropped\n";
   for (const auto& note : report.notes) std::cout << "note: " << note << "\n";
+  std::cout << "timing: read/mesh " << number(read_seconds) << " s (gmsh for .geo/.msh), CGAL topology "
+            << number(report.topology_seconds) << " s, other checks and arrays "
+            << number(build_seconds - report.topology_seconds) << " s\n";
   if (!output.empty()) {
     if (std::filesystem::path(output).extension() == ".msh")
       meshgen::write_msh(output, mesh);

@@ -76,7 +76,8 @@ struct Mesh {
 /// What build_mesh repaired or dropped, for the user to read.
 struct MeshBuildReport {
   int reoriented_zones = 0;        ///< clockwise zones turned counter-clockwise
-  int dropped_points = 0;          ///< orphan points removed
+  int dropped_points = 0;
+  double topology_seconds = 0;  ///< wall time of the CGAL topology check (0 when skipped)          ///< orphan points removed
   std::vector<std::string> notes;  ///< one line per repair, for the user
 };
 

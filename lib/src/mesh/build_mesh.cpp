@@ -3,6 +3,7 @@
 /// duplicate points, degenerate and self-intersecting zones) live here; orientation,
 /// manifoldness and boundary loops are done by CGAL in topology_cgal.cpp.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -265,7 +266,9 @@ Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options,
   std::iota(polygon_ids.begin(), polygon_ids.end(), std::int64_t{0});
   detail::TopologyResult topo;
   if (options.check_topology) {
+    const auto start = std::chrono::steady_clock::now();
     topo = detail::orient_and_check_topology({cx, cy, soup.polygon_begin, cpoints, used, polygon_ids, soup.source});
+    rep.topology_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   } else {
     // Trusted topology (the built-in generators): orientation from each zone's signed area.
     topo.reversed.assign(npoly, 0);

@@ -143,7 +143,7 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
   rho.assign(nz, 0.0);
   if (any_strength) {
     for (auto* v : {&sxx, &syy, &sxy, &sxx_new, &syy_new, &sxy_new, &sxx_half, &syy_half, &sxy_half, &plastic,
-                    &plastic_new, &shear_modulus_of_zone, &grad_xx, &grad_xy, &grad_yx, &grad_yy})
+                    &plastic_new, &grad_xx, &grad_xy, &grad_yx, &grad_yy})
       v->assign(nz, 0.0);
   }
   std::vector<double> corner_area(kMaxZoneVertices);
@@ -192,7 +192,6 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
       point_mass[m.corner_point[c]] += mc;
     }
     if (mat.strength) {
-      shear_modulus_of_zone[z] = mat.strength->shear_modulus;
       if (setup.stress_xx) sxx[z] = setup.stress_xx(cx, cy);
       if (setup.stress_yy) syy[z] = setup.stress_yy(cx, cy);
       if (setup.stress_xy) sxy[z] = setup.stress_xy(cx, cy);

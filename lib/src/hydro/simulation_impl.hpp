@@ -73,7 +73,6 @@ struct Simulation::Impl {
   std::vector<double> sxx, syy, sxy, sxx_new, syy_new, sxy_new, sxx_half, syy_half, sxy_half;
   std::vector<double> plastic, plastic_new;
   std::vector<double> grad_xx, grad_xy, grad_yx, grad_yy;  // L(v) on the current geometry
-  std::vector<double> shear_modulus_of_zone;  // 0 for zones without strength
   // Burn.
   std::vector<double> burn, burn_new, lighting_time, burn_length;
   // Corner forces: the last corrector's f^{n-1/2}, overwritten in place by f^{n+1/2}.

@@ -69,6 +69,17 @@ TEST(Meshgen, ParameterOverrideWorksLikeSetNumber) {
   EXPECT_EQ(build_mesh(meshgen::read_geo(geometry("quarter_shell.geo"))).num_zones(), 320);
 }
 
+TEST(Meshgen, QuarterShellMeshesAtHighAngularResolution) {
+  // Entity ids grow with n_theta and n_r: fixed ids once collided from n_theta = 495 on and
+  // gmsh crashed with a double free.
+  meshgen::GeoOptions options;
+  options.parameters = {{"n_theta", 1200}, {"n_r", 2}};
+  const Mesh m = build_mesh(meshgen::read_geo(geometry("quarter_shell.geo"), options));
+  EXPECT_EQ(m.num_zones(), 2400);
+  EXPECT_EQ(tag(m, "outer").points.size(), 1201U);
+  for (Index p : tag(m, "outer").points) EXPECT_NEAR(std::hypot(m.x[p], m.y[p]), 0.1, 1e-15);
+}
+
 TEST(Meshgen, UnknownParameterIsAnError) {
   meshgen::GeoOptions options;
   options.parameters = {{"n_thetta", 40}};

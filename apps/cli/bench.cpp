@@ -337,6 +337,12 @@ std::vector<RunSpec> stress_runs(const Context& context) {
   long_run.cycles_are_target = true;
   long_run.timeout_seconds = context.timeout;
   runs.push_back(long_run);
+  // The same with hourglass control (the Sod scene has none, to compare with the prototype):
+  // without it the hourglass modes grow over 10^4 cycles until a zone is crushed.
+  RunSpec long_hourglass = long_run;
+  long_hourglass.option = "long " + std::to_string(long_cycles) + " cycles, hourglass 0.1";
+  long_hourglass.overrides.emplace_back("numerics.hourglass_coefficient", "0.1");
+  runs.push_back(long_hourglass);
   return runs;
 }
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# libFuzzer targets of issue 7 (docs/robustness.md): the scene parser, the polygon-soup
+# libFuzzer targets (docs/robustness.md §3): the scene parser, the polygon-soup
 # import (build_mesh) and the .msh reader. Builds the libraries with clang and
 # -fsanitize=fuzzer-no-link,address,undefined in build-fuzz/, links each target in fuzz/
 # with -fsanitize=fuzzer,address,undefined, and runs each for SECONDS (default 60) on a

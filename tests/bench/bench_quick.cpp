@@ -1,4 +1,4 @@
-// The CI smoke test of `stagger bench` (issue 6): `stagger bench --quick` writes the CSVs
+// The CI smoke test of `stagger bench` (docs/benchmarks.md): `stagger bench --quick` writes the CSVs
 // with the required columns, every run keeps the energy audit at round-off, the quick
 // ladders show the expected orders, and the plot script turns the CSVs into figures.
 // Timings are reported by the bench, never asserted here.

@@ -50,7 +50,7 @@ TEST(HowellBallShell, ShellAreaIsConserved) {
 
 TEST(HowellBallShell, StopsNearThePrototypeRadii) {
   const HowellBallShell shell;
-  // Prototype of NUMERICS.md (compressible, elastic-plastic): 49.958 / 78.080 mm at 130 us.
+  // The prototype (compressible, elastic-plastic; docs/algorithm.md §16.2): 49.958 / 78.080 mm at 130 us.
   std::printf("[ numbers  ] stopping radii %.6f %.6f mm at %.6f us\n", 1e3 * shell.inner_stopping_radius(),
               1e3 * shell.outer_stopping_radius(), 1e6 * shell.stopping_time());
   EXPECT_NEAR(shell.inner_stopping_radius(), 0.049958, 1e-3);

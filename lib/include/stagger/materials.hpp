@@ -1,7 +1,7 @@
 #pragma once
 /// @file materials.hpp
 /// Material models: equations of state (pointwise p(rho, e) and c^2(rho, e)), strength
-/// (Wilkins hypo-elastic, von Mises) and programmed burn. NUMERICS.md section 8.
+/// (Wilkins hypo-elastic, von Mises) and programmed burn. docs/algorithm.md §3, §7, §8.
 #include <array>
 #include <optional>
 #include <string>

@@ -1,7 +1,7 @@
 /// @file norms.cpp
-/// Error norms of VERIFICATION.md ("How errors are measured"): area-weighted L1 and L2 means
+/// Error norms of docs/verification.md §11: area-weighted L1 and L2 means
 /// and the maximum, at zone centres (vertex average) and at points (median-dual areas, the
-/// corner areas of NUMERICS section 1), plus the mesh helpers the reference solutions share.
+/// corner areas of docs/algorithm.md §2), plus the mesh helpers the reference solutions share.
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -50,7 +50,7 @@ std::vector<double> zone_areas(const Mesh& mesh, std::span<const double> x, std:
   std::vector<double> areas(zones);
   for (Index z = 0; z < zones; ++z) {
     const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
-    double twice = 0;  // shoelace, NUMERICS section 2
+    double twice = 0;  // shoelace, docs/algorithm.md §2
     for (Index c = begin; c < end; ++c) {
       const Index p = mesh.corner_point[c], q = mesh.corner_point[c + 1 < end ? c + 1 : begin];
       twice += x[p] * y[q] - x[q] * y[p];

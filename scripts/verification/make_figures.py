@@ -635,14 +635,36 @@ def detonation_tables(runs):
     return text
 
 
-def audit_table(runs):
+def audit_table(runs, old_rows=None):
+    """One row per run; runs not loaded this time keep their row of the previous file."""
     rows = []
     for name in RUNS:
         if name in runs:
             r = runs[name]
             rows.append([name, r.summary["zones"], r.summary["cycles"], r.summary["time"], r.audit(),
                          r.summary["loop_seconds"], r.summary["status"][:60]])
+        elif old_rows and name in old_rows:
+            rows.append(old_rows[name])
     return table(["run", "zones", "cycles", "t reached", "max audit over the run", "loop s", "status"], rows)
+
+
+def read_results(path):
+    """The sections ("## title" -> text) and the audit-table rows (run -> cells) of an existing
+    verif_results.md, so that a partial run (--only) keeps what it did not recompute."""
+    sections, audit_rows = {}, {}
+    if not os.path.exists(path):
+        return sections, audit_rows
+    with open(path) as f:
+        text = f.read()
+    for chunk in text.split("\n## ")[1:]:
+        title = chunk.split("\n", 1)[0].strip()
+        sections[title] = "## " + chunk.rstrip("\n") + "\n\n"
+    audit = sections.get("Every run: energy audit and cost", "")
+    for line in audit.splitlines()[4:]:
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) == 7:
+            audit_rows[cells[0]] = cells
+    return sections, audit_rows
 
 
 SECTIONS = [
@@ -665,7 +687,9 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build", default=os.path.join(ROOT, "build"))
     parser.add_argument("--work", default=os.path.join(ROOT, "build", "verification"))
-    parser.add_argument("--only", nargs="*", help="run names (or prefixes) to run")
+    parser.add_argument("--only", nargs="*",
+                        help="run names (or prefixes) to run, plot and tabulate; the other sections of "
+                             "verif_results.md and their figures are kept as they are")
     parser.add_argument("--rerun", action="store_true", help="run again even if results exist")
     parser.add_argument("--plot-only", action="store_true")
     parser.add_argument("--jobs", type=int, default=1)
@@ -682,23 +706,29 @@ def main():
                 print(f"{name:24s} {status:10s} {seconds:7.1f} s", flush=True)
 
     runs = {}
-    for name in RUNS:
+    for name in names:
         try:
             runs[name] = Run(args.work, name)
         except (OSError, KeyError) as failure:
             print(f"warning: no results for {name}: {failure}", file=sys.stderr)
     os.makedirs(FIGURES, exist_ok=True)
+    results_path = os.path.join(FIGURES, "verif_results.md")
+    old_sections, old_audit_rows = read_results(results_path)
     figures = []
     text = ("# Verification results (generated)\n\nWritten by `scripts/verification/make_figures.py`; "
             "docs/verification.md discusses them.\n\n")
     for title, needed, figure, tables in SECTIONS:
         if not all(n in runs for n in needed):
-            print(f"skipping {title}: missing runs", file=sys.stderr)
+            if title in old_sections:
+                print(f"keeping {title} from {os.path.relpath(results_path, ROOT)}", file=sys.stderr)
+                text += old_sections[title]
+            else:
+                print(f"skipping {title}: missing runs", file=sys.stderr)
             continue
         figure(runs, figures)
         text += f"## {title}\n\n" + tables(runs) + "\n"
-    text += "## Every run: energy audit and cost\n\n" + audit_table(runs)
-    with open(os.path.join(FIGURES, "verif_results.md"), "w") as f:
+    text += "## Every run: energy audit and cost\n\n" + audit_table(runs, old_audit_rows)
+    with open(results_path, "w") as f:
         f.write(text)
     print("figures:", ", ".join(figures))
 

@@ -420,7 +420,7 @@ Scene load_scene(const std::string& path, const std::vector<std::pair<std::strin
   SourceContext source_context;
   if (auto sources = root.subtable("sources")) source_context = read_sources_section(*sources, problem);
   if (auto verification = root.subtable("verification"))
-    read_verification_section(*verification, problem, source_context, control);
+    read_verification_section(*verification, problem, source_context, control, scene.verification);
   root.finish();
 
   try {

@@ -50,7 +50,7 @@ energy = 0.5
 )";
 
 class OptionTables : public ::testing::Test {
-protected:
+ protected:
   void SetUp() override {
     path_ = (fs::temp_directory_path() /
              ("stagger_option_table_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
@@ -100,8 +100,8 @@ double other_value(const stagger::Option<Options>& option, double current) {
   return current;
 }
 
-std::string scene_text(const stagger::OptionType type, const std::string& written, const std::vector<const char*>& names,
-                       double value) {
+std::string scene_text(const stagger::OptionType type, const std::string& written,
+                       const std::vector<const char*>& names, double value) {
   if (type == stagger::OptionType::flag) return value != 0 ? "true" : "false";
   if (type == stagger::OptionType::choice) return std::string("\"") + names[static_cast<std::size_t>(value)] + "\"";
   return written;
@@ -118,7 +118,7 @@ TEST(OptionTableDocs, ScenesMdHoldsTheGeneratedTables) {
   const std::string document = text.str();
   const std::string generated = stagger::with_generated_option_tables(document);
   EXPECT_TRUE(generated == document) << "docs/scenes.md's option tables differ from the code: run "
-                                    "build/bin/stagger-options --update docs/scenes.md";
+                                        "build/bin/stagger-options --update docs/scenes.md";
   // The default in the docs is the struct's: cfl 0.15 and max_retries 3 must appear as such.
   EXPECT_NE(document.find("| `cfl` | number | `0.15` | (0, 1) |"), std::string::npos);
   EXPECT_NE(document.find("| `max_retries` | integer | `3` | [0, 30] |"), std::string::npos);
@@ -201,7 +201,8 @@ void check_table(const std::function<stagger::Scene(const std::string&, const st
     if (option.type != stagger::OptionType::number && option.type != stagger::OptionType::integer) continue;
     std::vector<double> outside;
     const double step = option.type == stagger::OptionType::integer ? 1.0 : 1e-3;
-    if (std::isfinite(option.range.low)) outside.push_back(option.range.low_open ? option.range.low : option.range.low - step);
+    if (std::isfinite(option.range.low))
+      outside.push_back(option.range.low_open ? option.range.low : option.range.low - step);
     if (std::isfinite(option.range.high))
       outside.push_back(option.range.high_open ? option.range.high : option.range.high + step);
     for (double bad : outside) {
@@ -245,7 +246,9 @@ TEST_F(OptionTables, ReaderAndValidateAgreeOnEveryRow) {
   check_table<stagger::Strength>(
       load_fn, error_fn, stagger::strength_option_table(), "material[0].strength.",
       [](const stagger::Scene& s) -> const stagger::Strength& { return *s.problem.materials.at(0).strength; },
-      [](const stagger::Scene&, const stagger::Strength& values) { stagger::strength_option_table().validate(values); });
+      [](const stagger::Scene&, const stagger::Strength& values) {
+        stagger::strength_option_table().validate(values);
+      });
 }
 
 // The library checks the same ranges on a Problem built in code (no scene involved).
@@ -287,12 +290,14 @@ TEST_F(OptionTables, ProblemValidateUsesTheTables) {
 }
 
 TEST_F(OptionTables, ReaderMessagesNameFileLineKeyAndMeaning) {
-  EXPECT_NE(error_of("numerics.max_retries", "31").find("key 'numerics.max_retries': must be in [0, 30], got 31; "
-                                                         "halvings of dt"),
+  EXPECT_NE(error_of("numerics.max_retries", "31")
+                .find("key 'numerics.max_retries': must be in [0, 30], got 31; "
+                      "halvings of dt"),
             std::string::npos)
       << error_of("numerics.max_retries", "31");
-  EXPECT_NE(error_of("numerics.viscosity", "\"viscous\"").find("unknown value \"viscous\"; use one of \"bulk\", \"edge\""),
-            std::string::npos);
+  EXPECT_NE(
+      error_of("numerics.viscosity", "\"viscous\"").find("unknown value \"viscous\"; use one of \"bulk\", \"edge\""),
+      std::string::npos);
   EXPECT_NE(error_of("output.history_every", "3000000000").find("must be at most 2147483647, got 3000000000"),
             std::string::npos)
       << error_of("output.history_every", "3000000000");

@@ -31,7 +31,7 @@ enum class OptionType {
 struct OptionRange {
   double low = -std::numeric_limits<double>::infinity();  ///< -inf: no lower bound
   double high = std::numeric_limits<double>::infinity();  ///< +inf: no upper bound
-  bool low_open = false, high_open = false;     ///< an open end excludes its bound
+  bool low_open = false, high_open = false;               ///< an open end excludes its bound
   /// True for a finite value inside the interval (false for NaN and infinities).
   bool contains(double value) const;
   /// "in (0, 1)", "> 0", ">= 1", "<= 2", "any finite value".
@@ -41,16 +41,16 @@ struct OptionRange {
 /// One row of an option table for the option struct `Options`.
 template <class Options>
 struct Option {
-  const char* key = "";                      ///< the scene key within its section
+  const char* key = "";  ///< the scene key within its section
   OptionType type = OptionType::number;
-  double (*get)(const Options&) = nullptr;   ///< the member's value (flag 0/1, choice: enum value)
-  void (*set)(Options&, double) = nullptr;   ///< sets the member (the value is admissible)
-  OptionRange range;                         ///< number, integer
-  double integer_max = 0;                    ///< integer: the largest value the member holds
-  std::vector<const char*> choices;          ///< choice: the names, indexed by enum value
-  bool required = false;                     ///< no default: a scene must give it
-  const char* unit = "";                     ///< "-" for a pure number, else a unit or quantity
-  const char* doc = "";                      ///< one line: what it does
+  double (*get)(const Options&) = nullptr;  ///< the member's value (flag 0/1, choice: enum value)
+  void (*set)(Options&, double) = nullptr;  ///< sets the member (the value is admissible)
+  OptionRange range;                        ///< number, integer
+  double integer_max = 0;                   ///< integer: the largest value the member holds
+  std::vector<const char*> choices;         ///< choice: the names, indexed by enum value
+  bool required = false;                    ///< no default: a scene must give it
+  const char* unit = "";                    ///< "-" for a pure number, else a unit or quantity
+  const char* doc = "";                     ///< one line: what it does
 
   /// The option's default: the value of a value-initialised Options.
   double default_value() const { return get(Options{}); }

@@ -70,8 +70,12 @@ Option<ObjectOf<Member>> row(const char* key, OptionType type, const char* unit,
   return option;
 }
 
-OptionRange at_least(double low) { return {low, kInfinity, false, true}; }
-OptionRange above(double low) { return {low, kInfinity, true, true}; }
+OptionRange at_least(double low) {
+  return {low, kInfinity, false, true};
+}
+OptionRange above(double low) {
+  return {low, kInfinity, true, true};
+}
 const OptionRange kAnyValue{};
 
 template <auto Member>
@@ -146,7 +150,8 @@ std::string OptionRange::text() const {
 template <class Options>
 std::string Option<Options>::value_text(double value) const {
   switch (type) {
-    case OptionType::flag: return value != 0 ? "true" : "false";
+    case OptionType::flag:
+      return value != 0 ? "true" : "false";
     case OptionType::choice: {
       const auto index = static_cast<std::size_t>(value);
       return value >= 0 && index < choices.size() ? std::string("\"") + choices[index] + "\"" : number_text(value);
@@ -156,7 +161,8 @@ std::string Option<Options>::value_text(double value) const {
       out << static_cast<long long>(value);
       return out.str();
     }
-    case OptionType::number: break;
+    case OptionType::number:
+      break;
   }
   return number_text(value);
 }
@@ -164,7 +170,8 @@ std::string Option<Options>::value_text(double value) const {
 template <class Options>
 std::string Option<Options>::check(double value) const {
   switch (type) {
-    case OptionType::flag: return {};
+    case OptionType::flag:
+      return {};
     case OptionType::choice:
       if (value >= 0 && static_cast<std::size_t>(value) < choices.size()) return {};
       return "must be one of " + range_text() + ", got " + number_text(value);
@@ -182,7 +189,8 @@ std::string Option<Options>::check(double value) const {
 template <class Options>
 std::string Option<Options>::range_text() const {
   switch (type) {
-    case OptionType::flag: return "true or false";
+    case OptionType::flag:
+      return "true or false";
     case OptionType::choice: {
       std::string text;
       for (std::size_t k = 0; k < choices.size(); ++k)
@@ -205,7 +213,8 @@ void OptionTable<Options>::validate(const Options& values, const std::string& wh
   for (const auto& option : options) {
     const std::string problem = option.check(option.get(values));
     if (!problem.empty())
-      throw Error((where.empty() ? std::string(section) : where) + "." + option.key + ": " + problem + "; " + option.doc);
+      throw Error((where.empty() ? std::string(section) : where) + "." + option.key + ": " + problem + "; " +
+                  option.doc);
   }
 }
 
@@ -269,10 +278,10 @@ const OptionTable<HydroOptions>& numerics_option_table() {
           number<&O::volume_limit>("volume_limit", {0, 1, true, false}, "-",
                                    "f_A: largest relative area change per step (§9)"),
           number<&O::dt_growth>("dt_growth", at_least(1), "-", "largest growth of dt from one step to the next (§9)"),
-          number<&O::dt_init>("dt_init", at_least(0), "time", "first dt, if below the CFL value; 0: the CFL value (§9)"),
+          number<&O::dt_init>("dt_init", at_least(0), "time",
+                              "first dt, if below the CFL value; 0: the CFL value (§9)"),
           number<&O::dt_max>("dt_max", at_least(0), "time", "largest dt; 0: none (§9)"),
-          number<&O::dt_min>("dt_min", at_least(0), "time",
-                             "the run stops when dt falls below it; 0: 1e-8 t_end (§9)"),
+          number<&O::dt_min>("dt_min", at_least(0), "time", "the run stops when dt falls below it; 0: 1e-8 t_end (§9)"),
           integer<&O::max_retries>("max_retries", {0, 30, false, false}, "-",
                                    "halvings of dt for a step that tangles the mesh (§9)"),
           flag<&O::check_corner_areas>("check_corner_areas",
@@ -338,7 +347,9 @@ const OptionTable<Strength>& strength_option_table() {
 
 // ---- validation of the run control ----
 
-void RunControl::validate() const { output_option_table().validate(*this); }
+void RunControl::validate() const {
+  output_option_table().validate(*this);
+}
 
 // ---- docs/scenes.md ----
 

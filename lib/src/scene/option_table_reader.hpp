@@ -26,14 +26,14 @@ void read_options(Section& section, const OptionTable<Options>& table, Options& 
         value = section.boolean(option.key, current != 0) ? 1.0 : 0.0;
         break;
       case OptionType::choice: {
-        const std::string name =
-            section.string(option.key, option.choices.at(static_cast<std::size_t>(current)));
+        const std::string name = section.string(option.key, option.choices.at(static_cast<std::size_t>(current)));
         value = -1;
         for (std::size_t k = 0; k < option.choices.size(); ++k)
           if (name == option.choices[k]) value = static_cast<double>(k);
         if (value < 0) {
           std::string list;  // the wording of Section::choice
-          for (const char* allowed : option.choices) list += std::string(list.empty() ? "" : ", ") + "\"" + allowed + "\"";
+          for (const char* allowed : option.choices)
+            list += std::string(list.empty() ? "" : ", ") + "\"" + allowed + "\"";
           section.fail(option.key, "unknown value \"" + name + "\"", "use one of " + list);
         }
         break;

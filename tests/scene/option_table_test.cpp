@@ -35,6 +35,22 @@ gamma = 1.4
 [material.strength]
 shear_modulus = 2.0
 yield_stress = 3.0
+[[material]]
+name = "copper"
+eos = "mie_gruneisen"
+rho0 = 8930.0
+a0 = 3940.0
+gamma0 = 2.0
+s = 1.49
+[[material]]
+name = "explosive"
+eos = "jwl"
+A = 5.242
+B = 0.07678
+R1 = 4.2
+R2 = 1.1
+omega = 0.34
+rho0 = 1.712
 [[region]]
 name = "domain"
 material = "gas"
@@ -130,7 +146,10 @@ TEST(OptionTableDocs, AChangedOrMissingBlockIsDetected) {
       "<!-- begin generated: numerics options -->\n<!-- end generated: numerics options -->\n"
       "<!-- begin generated: output options -->\n<!-- end generated: output options -->\n"
       "<!-- begin generated: deposit options -->\n<!-- end generated: deposit options -->\n"
-      "<!-- begin generated: material.strength options -->\n<!-- end generated: material.strength options -->\n";
+      "<!-- begin generated: material.strength options -->\n<!-- end generated: material.strength options -->\n"
+      "<!-- begin generated: ideal_gas options -->\n<!-- end generated: ideal_gas options -->\n"
+      "<!-- begin generated: mie_gruneisen options -->\n<!-- end generated: mie_gruneisen options -->\n"
+      "<!-- begin generated: jwl options -->\n<!-- end generated: jwl options -->\n";
   const std::string generated = stagger::with_generated_option_tables(document);
   EXPECT_EQ(generated.find("stale"), std::string::npos);
   EXPECT_NE(generated.find("| `end` | number | required | > 0 | time |"), std::string::npos);
@@ -158,6 +177,9 @@ TEST(OptionTableRows, DefaultsAreAdmissibleAndKeysUnique) {
   check(stagger::time_option_table());
   check(stagger::deposit_option_table());
   check(stagger::strength_option_table());
+  check(stagger::ideal_gas_option_table());
+  check(stagger::mie_gruneisen_option_table());
+  check(stagger::jwl_option_table());
 }
 
 TEST(OptionTableRows, RangeTexts) {
@@ -249,6 +271,28 @@ TEST_F(OptionTables, ReaderAndValidateAgreeOnEveryRow) {
       [](const stagger::Scene&, const stagger::Strength& values) {
         stagger::strength_option_table().validate(values);
       });
+  check_table<stagger::IdealGas>(
+      load_fn, error_fn, stagger::ideal_gas_option_table(), "material[0].",
+      [](const stagger::Scene& s) -> const stagger::IdealGas& {
+        return std::get<stagger::IdealGas>(s.problem.materials.at(0).eos);
+      },
+      [](const stagger::Scene&, const stagger::IdealGas& values) {
+        stagger::ideal_gas_option_table().validate(values);
+      });
+  check_table<stagger::MieGruneisen>(
+      load_fn, error_fn, stagger::mie_gruneisen_option_table(), "material[1].",
+      [](const stagger::Scene& s) -> const stagger::MieGruneisen& {
+        return std::get<stagger::MieGruneisen>(s.problem.materials.at(1).eos);
+      },
+      [](const stagger::Scene&, const stagger::MieGruneisen& values) {
+        stagger::mie_gruneisen_option_table().validate(values);
+      });
+  check_table<stagger::Jwl>(
+      load_fn, error_fn, stagger::jwl_option_table(), "material[2].",
+      [](const stagger::Scene& s) -> const stagger::Jwl& {
+        return std::get<stagger::Jwl>(s.problem.materials.at(2).eos);
+      },
+      [](const stagger::Scene&, const stagger::Jwl& values) { stagger::jwl_option_table().validate(values); });
 }
 
 // The library checks the same ranges on a Problem built in code (no scene involved).
@@ -279,6 +323,9 @@ TEST_F(OptionTables, ProblemValidateUsesTheTables) {
   problem = scene.problem;
   problem.materials[0].strength->yield_stress = 0;
   rejects(problem, "material 'gas': strength.yield_stress: must be > 0, got 0");
+  problem = scene.problem;
+  std::get<stagger::MieGruneisen>(problem.materials[1].eos).s = -0.5;
+  rejects(problem, "material 'copper': s: must be >= 0, got -0.5");
   problem = scene.problem;
   problem.options.viscosity = static_cast<stagger::Viscosity>(7);
   rejects(problem, "numerics.viscosity: must be one of \"bulk\" or \"edge\", got 7");

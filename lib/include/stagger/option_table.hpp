@@ -69,8 +69,8 @@ struct OptionTable {
   const char* struct_name = "";  ///< the C++ struct ("HydroOptions")
   std::vector<Option<Options>> options;
 
-  /// Throws stagger::Error "`where`.key: must be ..., got ...; doc" for the first option of
-  /// `values` that is not admissible (`where` defaults to the section).
+  /// Throws stagger::Error "`where`key: must be ..., got ...; doc" for the first option of
+  /// `values` that is not admissible (`where` defaults to "section.").
   void validate(const Options& values, const std::string& where = {}) const;
   /// "key = value" for every option, joined by ", " (describe()).
   std::string echo(const Options& values) const;
@@ -89,6 +89,12 @@ const OptionTable<RunControl>& output_option_table();
 const OptionTable<EnergyDeposit>& deposit_option_table();
 /// [material.strength]: Strength.
 const OptionTable<Strength>& strength_option_table();
+/// [[material]] with eos = "ideal_gas": IdealGas (section "ideal_gas").
+const OptionTable<IdealGas>& ideal_gas_option_table();
+/// [[material]] with eos = "mie_gruneisen": MieGruneisen (section "mie_gruneisen").
+const OptionTable<MieGruneisen>& mie_gruneisen_option_table();
+/// [[material]] with eos = "jwl": Jwl (section "jwl").
+const OptionTable<Jwl>& jwl_option_table();
 
 /// `document` with every generated block replaced by the current table: a block is the text
 /// between a line `<!-- begin generated: SECTION options -->` and the next line

@@ -213,7 +213,7 @@ void OptionTable<Options>::validate(const Options& values, const std::string& wh
   for (const auto& option : options) {
     const std::string problem = option.check(option.get(values));
     if (!problem.empty())
-      throw Error((where.empty() ? std::string(section) : where) + "." + option.key + ": " + problem + "; " +
+      throw Error((where.empty() ? std::string(section) + "." : where) + option.key + ": " + problem + "; " +
                   option.doc);
   }
 }
@@ -251,6 +251,12 @@ template struct OptionTable<Problem>;
 template struct OptionTable<RunControl>;
 template struct OptionTable<EnergyDeposit>;
 template struct OptionTable<Strength>;
+template struct Option<IdealGas>;
+template struct Option<MieGruneisen>;
+template struct Option<Jwl>;
+template struct OptionTable<IdealGas>;
+template struct OptionTable<MieGruneisen>;
+template struct OptionTable<Jwl>;
 
 // ---- the tables ----
 
@@ -345,6 +351,43 @@ const OptionTable<Strength>& strength_option_table() {
   return table;
 }
 
+const OptionTable<IdealGas>& ideal_gas_option_table() {
+  static const OptionTable<IdealGas> table{
+      "ideal_gas",
+      "IdealGas",
+      {required_number<&IdealGas::gamma>("gamma", above(1), "-", "ratio of specific heats; p = (gamma - 1) rho e")}};
+  return table;
+}
+
+const OptionTable<MieGruneisen>& mie_gruneisen_option_table() {
+  using M = MieGruneisen;
+  static const OptionTable<MieGruneisen> table{
+      "mie_gruneisen",
+      "MieGruneisen",
+      {
+          required_number<&M::rho0>("rho0", above(0), "density", "reference density (§3)"),
+          required_number<&M::a0>("a0", above(0), "velocity", "bulk sound speed, the Hugoniot's intercept c0 (§3)"),
+          required_number<&M::gamma0>("gamma0", at_least(0), "-", "Grueneisen coefficient Gamma0 (§3)"),
+          required_number<&M::s>("s", at_least(0), "-", "Hugoniot slope s, U_s = a0 + s u_p (§3)"),
+      }};
+  return table;
+}
+
+const OptionTable<Jwl>& jwl_option_table() {
+  static const OptionTable<Jwl> table{
+      "jwl",
+      "Jwl",
+      {
+          required_number<&Jwl::A>("A", kAnyValue, "pressure", "first pressure coefficient (§3)"),
+          required_number<&Jwl::B>("B", kAnyValue, "pressure", "second pressure coefficient (§3)"),
+          required_number<&Jwl::R1>("R1", above(0), "-", "first decay constant (§3)"),
+          required_number<&Jwl::R2>("R2", above(0), "-", "second decay constant (§3)"),
+          required_number<&Jwl::omega>("omega", above(0), "-", "Grueneisen coefficient of the products (§3)"),
+          required_number<&Jwl::rho0>("rho0", above(0), "density", "unreacted density; V = rho0 / rho (§3)"),
+      }};
+  return table;
+}
+
 // ---- validation of the run control ----
 
 void RunControl::validate() const {
@@ -361,8 +404,11 @@ std::string generated_table(const std::string& section) {
   if (section == output_option_table().section) return output_option_table().markdown();
   if (section == deposit_option_table().section) return deposit_option_table().markdown();
   if (section == strength_option_table().section) return strength_option_table().markdown();
+  if (section == ideal_gas_option_table().section) return ideal_gas_option_table().markdown();
+  if (section == mie_gruneisen_option_table().section) return mie_gruneisen_option_table().markdown();
+  if (section == jwl_option_table().section) return jwl_option_table().markdown();
   throw Error("generated option table: unknown section '" + section +
-              "' (known: numerics, time, output, deposit, material.strength)");
+              "' (known: numerics, time, output, deposit, material.strength, ideal_gas, mie_gruneisen, jwl)");
 }
 
 }  // namespace
@@ -370,7 +416,8 @@ std::string generated_table(const std::string& section) {
 std::string with_generated_option_tables(const std::string& document) {
   static const std::string begin_mark = "<!-- begin generated: ", end_mark = "<!-- end generated: ",
                            close = " options -->";
-  const std::vector<std::string> sections = {"numerics", "time", "output", "deposit", "material.strength"};
+  const std::vector<std::string> sections = {"numerics",          "time",      "output",        "deposit",
+                                             "material.strength", "ideal_gas", "mie_gruneisen", "jwl"};
   std::vector<std::string> seen;
   std::istringstream in(document);
   std::string out, line;

@@ -33,16 +33,10 @@ void require(bool condition, const std::string& message) {
 void validate_material(const Material& m) {
   const std::string where = "material '" + m.name + "': ";
   require(!m.name.empty(), "a material has no name");
-  if (const auto* g = std::get_if<IdealGas>(&m.eos)) {
-    require(g->gamma > 1.0, where + "ideal gas gamma must be > 1 (got " + std::to_string(g->gamma) + ")");
-  } else if (const auto* mg = std::get_if<MieGruneisen>(&m.eos)) {
-    require(mg->rho0 > 0 && mg->a0 > 0, where + "Mie-Gruneisen rho0 and a0 must be > 0");
-    require(mg->s >= 0 && mg->gamma0 >= 0, where + "Mie-Gruneisen s and Gamma0 must be >= 0");
-  } else if (const auto* j = std::get_if<Jwl>(&m.eos)) {
-    require(j->rho0 > 0 && j->R1 > 0 && j->R2 > 0 && j->omega > 0,
-            where + "JWL rho0, R1, R2 and omega must be > 0");
-  }
-  if (m.strength) strength_option_table().validate(*m.strength, "material '" + m.name + "': strength");
+  if (const auto* g = std::get_if<IdealGas>(&m.eos)) ideal_gas_option_table().validate(*g, where);
+  if (const auto* mg = std::get_if<MieGruneisen>(&m.eos)) mie_gruneisen_option_table().validate(*mg, where);
+  if (const auto* j = std::get_if<Jwl>(&m.eos)) jwl_option_table().validate(*j, where);
+  if (m.strength) strength_option_table().validate(*m.strength, where + "strength.");
   if (m.burn) {
     require(m.burn->detonation_speed > 0, where + "burn detonation_speed must be > 0");
     require(!m.burn->points.empty() || m.burn->plane.has_value(),
@@ -56,10 +50,10 @@ void validate_material(const Material& m) {
 void Problem::validate() const {
   require(mesh.num_zones() > 0, "problem '" + name + "': the mesh has no zones");
   // The ranges of the option tables (option_table.hpp), the same that the scene reader checks.
-  time_option_table().validate(*this, "problem '" + name + "': time");
+  time_option_table().validate(*this, "problem '" + name + "': time.");
   numerics_option_table().validate(options);
   for (std::size_t k = 0; k < deposits.size(); ++k)
-    deposit_option_table().validate(deposits[k], "deposit[" + std::to_string(k) + "]");
+    deposit_option_table().validate(deposits[k], "deposit[" + std::to_string(k) + "].");
 
   std::set<std::string> material_names;
   for (const auto& m : materials) {

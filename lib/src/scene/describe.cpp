@@ -20,16 +20,13 @@ const char* kind_name(BoundaryKind kind) {
   return "?";
 }
 
+// The EOS and its constants, named as in the scene (the option tables' echo).
 std::string eos_text(const EquationOfState& eos) {
-  std::ostringstream text;
-  if (const auto* gas = std::get_if<IdealGas>(&eos)) text << "ideal gas, gamma = " << gas->gamma;
+  if (const auto* gas = std::get_if<IdealGas>(&eos)) return "ideal gas, " + ideal_gas_option_table().echo(*gas);
   if (const auto* mg = std::get_if<MieGruneisen>(&eos))
-    text << "Mie-Gruneisen, rho0 = " << mg->rho0 << ", a0 = " << mg->a0 << ", Gamma0 = " << mg->gamma0
-         << ", s = " << mg->s;
-  if (const auto* jwl = std::get_if<Jwl>(&eos))
-    text << "JWL, A = " << jwl->A << ", B = " << jwl->B << ", R1 = " << jwl->R1 << ", R2 = " << jwl->R2
-         << ", omega = " << jwl->omega << ", rho0 = " << jwl->rho0;
-  return text.str();
+    return "Mie-Gruneisen, " + mie_gruneisen_option_table().echo(*mg);
+  if (const auto* jwl = std::get_if<Jwl>(&eos)) return "JWL, " + jwl_option_table().echo(*jwl);
+  return "?";
 }
 
 // "  " + the option table's echo, wrapped after a comma at about 100 columns.

@@ -114,33 +114,18 @@ void read_scene_section(Section& root, const std::string& file, Problem& problem
 Material read_material(Section& section) {
   Material material;
   material.name = section.string("name");
-  auto positive = [&](const char* key) {
-    const double value = section.number(key);
-    if (!(value > 0)) section.fail(key, "must be > 0, got " + show(value));
-    return value;
-  };
   const std::string eos = section.choice("eos", {"ideal_gas", "mie_gruneisen", "jwl"});
   if (eos == "ideal_gas") {
     IdealGas gas;
-    gas.gamma = section.number("gamma");
-    if (!(gas.gamma > 1)) section.fail("gamma", "must be > 1, got " + show(gas.gamma));
+    read_options(section, ideal_gas_option_table(), gas);
     material.eos = gas;
   } else if (eos == "mie_gruneisen") {
     MieGruneisen mg;
-    mg.rho0 = positive("rho0");
-    mg.a0 = positive("a0");
-    mg.gamma0 = section.number("gamma0");
-    mg.s = section.number("s");
-    if (!(mg.gamma0 >= 0)) section.fail("gamma0", "must be >= 0");
+    read_options(section, mie_gruneisen_option_table(), mg);
     material.eos = mg;
   } else {
     Jwl jwl;
-    jwl.A = section.number("A");
-    jwl.B = section.number("B");
-    jwl.R1 = positive("R1");
-    jwl.R2 = positive("R2");
-    jwl.omega = positive("omega");
-    jwl.rho0 = positive("rho0");
+    read_options(section, jwl_option_table(), jwl);
     material.eos = jwl;
   }
   if (section.has("min_energy")) material.min_energy = section.number("min_energy");

@@ -21,9 +21,9 @@ struct SourceContext {
 
 /// Reads [sources] into problem.sources.
 SourceContext read_sources_section(Section& sources, Problem& problem);
-/// Reads [verification] into control.reference.
+/// Reads [verification] into control.reference and its parameters into `setup`.
 void read_verification_section(Section& verification, const Problem& problem, const SourceContext& sources,
-                               RunControl& control);
+                               RunControl& control, VerificationSetup& setup);
 
 /// Zone centre (vertex average, docs/algorithm.md §2).
 std::array<double, 2> zone_centre(const Mesh& mesh, Index zone);

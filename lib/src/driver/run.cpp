@@ -6,6 +6,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <charconv>
 #include <chrono>
 #include <cerrno>
 #include <cmath>
@@ -16,7 +17,6 @@
 #include <fstream>
 #include <limits>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -170,11 +170,12 @@ public:
     simulation_.restore(blob, source);
     const double t_end = simulation_.problem().t_end;
     if (!(t_end > simulation_.time())) {
-      std::ostringstream message;
-      message.precision(17);
-      message << source << " is at t = " << simulation_.time() << ", but the scene's end time is " << t_end
-              << ": a restart needs a later end time (time.end)";
-      throw Error(message.str());
+      auto shortest = [](double value) {  // the digits that read back as `value`
+        char text[32];
+        return std::string(text, std::to_chars(text, text + sizeof text, value).ptr);
+      };
+      throw Error(source + " is at t = " + shortest(simulation_.time()) + ", but the scene's end time is " +
+                  shortest(t_end) + ": a restart needs a later end time (time.end)");
     }
     state_ = state;
     pvd_.restore(std::move(entries));

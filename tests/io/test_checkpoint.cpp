@@ -69,7 +69,9 @@ std::string resume_error(const ScratchDirectory& scratch, Problem problem, const
   return "";
 }
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
 
 TEST(Checkpoint, OwnFnvMatchesTheReferenceVectors) {
   EXPECT_EQ(fnv1a(""), 0xcbf29ce484222325ull);

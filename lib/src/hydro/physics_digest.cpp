@@ -28,7 +28,7 @@ std::string hex(std::uint64_t hash) {
 
 // FNV-1a over little-endian encodings of integers and doubles (io/byte_stream.hpp).
 class Hasher {
-public:
+ public:
   void integer(std::int64_t value) {
     char bytes[8];
     for (int k = 0; k < 8; ++k) bytes[k] = static_cast<char>((static_cast<std::uint64_t>(value) >> (8 * k)) & 0xffu);
@@ -49,12 +49,12 @@ public:
   }
   std::string digest() const { return hex(hash_); }
 
-private:
+ private:
   std::uint64_t hash_ = io_detail::kFnv1aOffset;
 };
 
 class Digest {
-public:
+ public:
   explicit Digest(std::vector<DigestEntry>& entries) : entries_(entries) {}
   void value(const char* section, const std::string& key, const std::string& value) {
     entries_.push_back({section, key, value, false});
@@ -64,17 +64,22 @@ public:
     entries_.push_back({section, key, h.digest(), true});
   }
 
-private:
+ private:
   std::vector<DigestEntry>& entries_;
 };
 
 const char* boundary_type(BoundaryKind kind) {
   switch (kind) {
-    case BoundaryKind::wall: return "wall";
-    case BoundaryKind::velocity: return "velocity";
-    case BoundaryKind::free: return "free";
-    case BoundaryKind::pressure: return "pressure";
-    case BoundaryKind::periodic: return "periodic";
+    case BoundaryKind::wall:
+      return "wall";
+    case BoundaryKind::velocity:
+      return "velocity";
+    case BoundaryKind::free:
+      return "free";
+    case BoundaryKind::pressure:
+      return "pressure";
+    case BoundaryKind::periodic:
+      return "periodic";
   }
   return "?";
 }
@@ -244,7 +249,8 @@ std::vector<DigestEntry> sampled_digest(const Simulation::Impl& s, double t_refe
   for (const BoundaryCondition& bc : problem.boundaries) {
     if (bc.kind == BoundaryKind::velocity) {
       Hasher h;
-      for (int k = 0; k <= kSamples; ++k) h.value(bc.velocity_x(sample_time(k))), h.value(bc.velocity_y(sample_time(k)));
+      for (int k = 0; k <= kSamples; ++k)
+        h.value(bc.velocity_x(sample_time(k))), h.value(bc.velocity_y(sample_time(k)));
       d.hashed("boundaries", bc.tag + ".velocity", h);
     }
     if (bc.kind == BoundaryKind::pressure) {

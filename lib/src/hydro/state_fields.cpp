@@ -24,8 +24,10 @@ const std::array kFields = {
     StateField{"y", &I::y, Entity::point, Presence::always, kC},
     StateField{"x_half", &I::x_half, Entity::point, Presence::half_step},
     StateField{"y_half", &I::y_half, Entity::point, Presence::half_step},
-    StateField{"vx", &I::vx, Entity::point, Presence::always, kC | kR | kD, 0.0, &I::vx_new, "velocity", Role::vector_x},
-    StateField{"vy", &I::vy, Entity::point, Presence::always, kC | kR | kD, 0.0, &I::vy_new, "velocity", Role::vector_y},
+    StateField{"vx", &I::vx, Entity::point, Presence::always, kC | kR | kD, 0.0, &I::vx_new, "velocity",
+               Role::vector_x},
+    StateField{"vy", &I::vy, Entity::point, Presence::always, kC | kR | kD, 0.0, &I::vy_new, "velocity",
+               Role::vector_y},
     StateField{"vx_new", &I::vx_new, Entity::point, Presence::always},
     StateField{"vy_new", &I::vy_new, Entity::point, Presence::always},
     StateField{"vx_star", &I::vx_star, Entity::point, Presence::always},
@@ -46,12 +48,12 @@ const std::array kFields = {
     StateField{"c", &I::c, Entity::zone, Presence::always, kD, 0.0, nullptr, "sound_speed"},
     StateField{"rho_half", &I::rho_half, Entity::zone, Presence::edge_viscosity},
     StateField{"c_half", &I::c_half, Entity::zone, Presence::edge_viscosity},
-    StateField{"sxx", &I::sxx, Entity::zone, Presence::strength, kC | kR | kD, 0.0, &I::sxx_new,
-               "deviatoric_stress_xx", Role::deviator_xx},
-    StateField{"syy", &I::syy, Entity::zone, Presence::strength, kC | kR | kD, 0.0, &I::syy_new,
-               "deviatoric_stress_yy", Role::deviator_yy},
-    StateField{"sxy", &I::sxy, Entity::zone, Presence::strength, kC | kR | kD, 0.0, &I::sxy_new,
-               "deviatoric_stress_xy", Role::deviator_xy},
+    StateField{"sxx", &I::sxx, Entity::zone, Presence::strength, kC | kR | kD, 0.0, &I::sxx_new, "deviatoric_stress_xx",
+               Role::deviator_xx},
+    StateField{"syy", &I::syy, Entity::zone, Presence::strength, kC | kR | kD, 0.0, &I::syy_new, "deviatoric_stress_yy",
+               Role::deviator_yy},
+    StateField{"sxy", &I::sxy, Entity::zone, Presence::strength, kC | kR | kD, 0.0, &I::sxy_new, "deviatoric_stress_xy",
+               Role::deviator_xy},
     StateField{"sxx_new", &I::sxx_new, Entity::zone, Presence::strength},
     StateField{"syy_new", &I::syy_new, Entity::zone, Presence::strength},
     StateField{"sxy_new", &I::sxy_new, Entity::zone, Presence::strength},
@@ -78,28 +80,41 @@ const std::array kFields = {
 
 }  // namespace
 
-std::span<const StateField> state_fields() { return kFields; }
+std::span<const StateField> state_fields() {
+  return kFields;
+}
 
 bool present(const Simulation::Impl& s, Presence presence) {
   const auto& sources = s.problem.sources;
   switch (presence) {
-    case Presence::always: return true;
-    case Presence::strength: return s.any_strength;
-    case Presence::burn: return s.any_burn;
-    case Presence::edge_viscosity: return s.edge_viscosity;
-    case Presence::half_step: return s.any_strength || s.edge_viscosity || s.has_external || sources.has_value();
-    case Presence::external: return s.has_external;
-    case Presence::momentum_source: return sources && sources->momentum;
-    case Presence::energy_source: return sources && sources->energy;
+    case Presence::always:
+      return true;
+    case Presence::strength:
+      return s.any_strength;
+    case Presence::burn:
+      return s.any_burn;
+    case Presence::edge_viscosity:
+      return s.edge_viscosity;
+    case Presence::half_step:
+      return s.any_strength || s.edge_viscosity || s.has_external || sources.has_value();
+    case Presence::external:
+      return s.has_external;
+    case Presence::momentum_source:
+      return sources && sources->momentum;
+    case Presence::energy_source:
+      return sources && sources->energy;
   }
   return false;
 }
 
 Index entity_size(const Simulation::Impl& s, Entity entity) {
   switch (entity) {
-    case Entity::point: return s.mesh().num_points();
-    case Entity::zone: return s.mesh().num_zones();
-    case Entity::corner: return s.mesh().num_corners();
+    case Entity::point:
+      return s.mesh().num_points();
+    case Entity::zone:
+      return s.mesh().num_zones();
+    case Entity::corner:
+      return s.mesh().num_corners();
   }
   return 0;
 }

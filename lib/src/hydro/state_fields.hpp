@@ -34,7 +34,7 @@ enum StateFlag : unsigned {
 using StateArray = std::vector<double> Simulation::Impl::*;
 
 struct StateField {
-  const char* name;           // the Impl member (and the field's name in checkpoints)
+  const char* name;  // the Impl member (and the field's name in checkpoints)
   StateArray member;
   Entity entity;
   Presence presence;

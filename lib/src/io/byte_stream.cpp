@@ -32,7 +32,9 @@ void ByteWriter::u64(std::uint64_t value) {
   out_.append(bytes, 8);
 }
 
-void ByteWriter::f64(double value) { u64(std::bit_cast<std::uint64_t>(value)); }
+void ByteWriter::f64(double value) {
+  u64(std::bit_cast<std::uint64_t>(value));
+}
 
 void ByteWriter::bytes(std::string_view text) {
   u64(text.size());
@@ -48,12 +50,14 @@ void ByteWriter::doubles(std::span<const double> values) {
   }
 }
 
-void ByteReader::fail(const std::string& message) const { throw Error(source_ + ": " + message); }
+void ByteReader::fail(const std::string& message) const {
+  throw Error(source_ + ": " + message);
+}
 
 void ByteReader::need(std::uint64_t size) const {
   if (size > data_.size() - position_) {
-    fail("truncated or corrupt (needs " + std::to_string(size) + " more bytes at offset " +
-         std::to_string(position_) + ", has " + std::to_string(data_.size() - position_) + ")");
+    fail("truncated or corrupt (needs " + std::to_string(size) + " more bytes at offset " + std::to_string(position_) +
+         ", has " + std::to_string(data_.size() - position_) + ")");
   }
 }
 
@@ -71,7 +75,9 @@ std::uint64_t ByteReader::u64() {
   return value;
 }
 
-double ByteReader::f64() { return std::bit_cast<double>(u64()); }
+double ByteReader::f64() {
+  return std::bit_cast<double>(u64());
+}
 
 std::string_view ByteReader::bytes_view() {
   const std::uint64_t size = u64();

@@ -24,7 +24,7 @@ std::uint64_t fnv1a64(std::string_view data, std::uint64_t hash = kFnv1aOffset);
 std::uint64_t fnv1a64(std::span<const double> values, std::uint64_t hash = kFnv1aOffset);
 
 class ByteWriter {
-public:
+ public:
   void u8(std::uint8_t value) { out_.push_back(static_cast<char>(value)); }
   void u64(std::uint64_t value);
   void i64(std::int64_t value) { u64(static_cast<std::uint64_t>(value)); }
@@ -38,12 +38,12 @@ public:
   const std::string& data() const { return out_; }
   std::string take() { return std::move(out_); }
 
-private:
+ private:
   std::string out_;
 };
 
 class ByteReader {
-public:
+ public:
   /// `source` names the data in errors, e.g. "checkpoint 'out/sod.checkpoint'".
   ByteReader(std::string_view data, std::string source) : data_(data), source_(std::move(source)) {}
   std::uint8_t u8();
@@ -67,7 +67,7 @@ public:
   [[noreturn]] void fail(const std::string& message) const;
   const std::string& source() const { return source_; }
 
-private:
+ private:
   void need(std::uint64_t size) const;
   std::string_view data_;
   std::size_t position_ = 0;

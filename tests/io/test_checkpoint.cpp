@@ -200,6 +200,17 @@ TEST(Checkpoint, SimulationBlobRestoresBitwiseAndRefusesOtherPhysics) {
                         a.specific_internal_energy().size_bytes()),
             0);
 
+  // A crafted count (the checksum of a file would not catch a deliberate one) is an error, not
+  // an allocation of its size.
+  std::string crafted = blob;
+  crafted.replace(8, 8, std::string("\0\0\0\0\0\0\0\x10", 8));  // 2^60 digest entries
+  try {
+    b.restore(crafted, "crafted");
+    FAIL() << "expected stagger::Error";
+  } catch (const Error& error) {
+    EXPECT_TRUE(contains(error.what(), "crafted: is corrupt")) << error.what();
+  }
+
   Problem hotter = io_test::sod_problem(40, 0.1);
   hotter.regions[0].pressure = [](double x, double) { return x < 0.5 ? 2.0 : 0.1; };
   Simulation c(std::move(hotter));

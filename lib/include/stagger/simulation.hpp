@@ -87,7 +87,7 @@ public:
   enum class OutputRole { scalar, vector_x, vector_y, deviator_xx, deviator_yy, deviator_xy };
   /// One state array as the dumps write it (docs/output.md).
   struct OutputField {
-    std::string_view name;  ///< array name in the .vtu files (both components share a vector's)
+    std::string_view name;   ///< array name in the .vtu files (a vector's two components carry its name)
     bool on_points = false;  ///< point array (else zone array)
     bool always = true;      ///< in every run (else only with strength or burn)
     OutputRole role = OutputRole::scalar;

@@ -159,7 +159,7 @@ public:
     state.last_history_cycle = in.i64();
     state.loop_seconds = in.f64();
     state.wall_seconds = in.f64();
-    std::vector<std::pair<double, std::string>> entries(in.u64());
+    std::vector<std::pair<double, std::string>> entries(in.count(16, ".pvd entries"));
     for (auto& [time, file] : entries) {
       time = in.f64();
       file = in.bytes();

@@ -291,10 +291,8 @@ void write_digest(io_detail::ByteWriter& out, const std::vector<DigestEntry>& di
 }
 
 std::vector<DigestEntry> read_digest(io_detail::ByteReader& in) {
-  const std::uint64_t count = in.u64();
-  // Each entry takes at least 25 bytes: a count beyond what is left is corruption.
-  if (count > (1u << 24)) in.fail("the physics digest is corrupt (" + std::to_string(count) + " entries)");
-  std::vector<DigestEntry> digest(count);
+  // An entry takes at least 25 bytes: three string lengths and the flag.
+  std::vector<DigestEntry> digest(in.count(25, "physics digest entries"));
   for (auto& e : digest) {
     e.section = in.bytes();
     e.key = in.bytes();

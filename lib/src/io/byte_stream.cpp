@@ -109,6 +109,15 @@ void ByteReader::doubles(std::span<double> out, std::string_view what) {
   }
 }
 
+std::uint64_t ByteReader::count(std::size_t min_item_size, std::string_view what) {
+  const std::uint64_t n = u64();
+  if (n > remaining() / min_item_size) {
+    fail("is corrupt: " + std::to_string(n) + " " + std::string(what) + " cannot fit in the " +
+         std::to_string(remaining()) + " bytes left");
+  }
+  return n;
+}
+
 std::uint64_t ByteReader::skip_doubles() {
   const std::uint64_t count = u64();
   if (count > (data_.size() - position_) / 8) need(data_.size() - position_ + 1);  // reports the truncation

@@ -60,6 +60,10 @@ class ByteReader {
   /// Skips a double array, returning its count.
   std::uint64_t skip_doubles();
   std::size_t position() const { return position_; }
+  std::size_t remaining() const { return data_.size() - position_; }
+  /// Reads a count of items that take at least `min_item_size` bytes each; a count the
+  /// remaining bytes cannot hold is an error naming `what` (no huge allocation from a bad file).
+  std::uint64_t count(std::size_t min_item_size, std::string_view what);
   bool at_end() const { return position_ == data_.size(); }
   /// Throws unless every byte was read.
   void expect_end() const;

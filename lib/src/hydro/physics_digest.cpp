@@ -29,11 +29,7 @@ std::string hex(std::uint64_t hash) {
 // FNV-1a over little-endian encodings of integers and doubles (io/byte_stream.hpp).
 class Hasher {
  public:
-  void integer(std::int64_t value) {
-    char bytes[8];
-    for (int k = 0; k < 8; ++k) bytes[k] = static_cast<char>((static_cast<std::uint64_t>(value) >> (8 * k)) & 0xffu);
-    hash_ = fnv1a64(std::string_view(bytes, 8), hash_);
-  }
+  void integer(std::int64_t value) { hash_ = fnv1a64(static_cast<std::uint64_t>(value), hash_); }
   void integers(std::span<const Index> values) {
     integer(static_cast<std::int64_t>(values.size()));
     for (const Index v : values) integer(v);

@@ -18,11 +18,13 @@ std::uint64_t fnv1a64(std::string_view data, std::uint64_t hash) {
   return hash;
 }
 
+std::uint64_t fnv1a64(std::uint64_t value, std::uint64_t hash) {
+  for (int k = 0; k < 8; ++k) hash = (hash ^ ((value >> (8 * k)) & 0xffu)) * kFnv1aPrime;
+  return hash;
+}
+
 std::uint64_t fnv1a64(std::span<const double> values, std::uint64_t hash) {
-  for (const double v : values) {
-    const auto bits = std::bit_cast<std::uint64_t>(v);
-    for (int k = 0; k < 8; ++k) hash = (hash ^ ((bits >> (8 * k)) & 0xffu)) * kFnv1aPrime;
-  }
+  for (const double v : values) hash = fnv1a64(std::bit_cast<std::uint64_t>(v), hash);
   return hash;
 }
 

@@ -20,6 +20,8 @@ static_assert(std::numeric_limits<double>::is_iec559 && sizeof(double) == 8,
 /// Each byte step is a bijection of the state, so any change of one byte changes the hash.
 inline constexpr std::uint64_t kFnv1aOffset = 14695981039346656037ull;
 std::uint64_t fnv1a64(std::string_view data, std::uint64_t hash = kFnv1aOffset);
+/// The same over the 8 bytes of `value`, little-endian (as ByteWriter::u64 writes it).
+std::uint64_t fnv1a64(std::uint64_t value, std::uint64_t hash);
 /// The same over the bytes of the little-endian encoding of `values` (as ByteWriter writes them).
 std::uint64_t fnv1a64(std::span<const double> values, std::uint64_t hash = kFnv1aOffset);
 

@@ -8,6 +8,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "stagger/problem.hpp"
 #include "stagger/remap.hpp"
@@ -81,6 +82,21 @@ public:
   std::span<const double> burn_fraction() const;  ///< empty without burn
   ///@}
 
+  /// How a dumped array is written: a scalar, a component of a point vector (z = 0), or a
+  /// component of the deviatoric stress (the dumps add its von Mises invariant after xy).
+  enum class OutputRole { scalar, vector_x, vector_y, deviator_xx, deviator_yy, deviator_xy };
+  /// One state array as the dumps write it (docs/output.md).
+  struct OutputField {
+    std::string_view name;   ///< array name in the .vtu files (a vector's two components carry its name)
+    bool on_points = false;  ///< point array (else zone array)
+    bool always = true;      ///< in every run (else only with strength or burn)
+    OutputRole role = OutputRole::scalar;
+    std::span<const double> values;  ///< valid as the field accessors above
+  };
+  /// The dumped arrays present in this run, in the order of the dumps (the state table,
+  /// docs/architecture.md).
+  std::vector<OutputField> output_fields() const;
+
   /// Energy audit of the current state (deterministic fixed-order sums).
   EnergyAudit energy() const;
   /// Total momentum sum_p m_p v_p.
@@ -94,10 +110,13 @@ public:
   void set_observer(std::function<void(const Simulation&)> observer);
 
   /// Everything the next cycle reads (state, t, cycle, dt, previous forces, work, E(0)),
-  /// as a binary blob, for a bitwise restart.
+  /// as a binary blob, for a bitwise restart, with a digest of what defines the physics
+  /// (mesh, materials, regions, boundary conditions, sources, numerics; docs/output.md).
   std::string checkpoint() const;
-  /// Restores a blob from checkpoint(); throws stagger::Error if it belongs to another mesh.
-  void restore(std::string_view blob);
+  /// Restores a blob from checkpoint(). Throws stagger::Error, naming `source` and leaving the
+  /// state as it was, if the blob is malformed or its physics digest differs from this
+  /// problem's (the message names each differing entry); the end time may differ.
+  void restore(std::string_view blob, const std::string& source = "checkpoint");
 
   /// Implementation detail (opaque outside the library).
   struct Impl;

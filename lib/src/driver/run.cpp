@@ -6,6 +6,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <charconv>
 #include <chrono>
 #include <cerrno>
 #include <cmath>
@@ -21,6 +22,7 @@
 #include <vector>
 
 #include "io/atomic_file.hpp"
+#include "io/byte_stream.hpp"
 #include "stagger/error.hpp"
 #include "stagger/simulation.hpp"
 
@@ -35,60 +37,12 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// ---- checkpoint file: a text header, then length-prefixed binary fields ----
+// ---- checkpoint file (docs/output.md, "Checkpoints"): a text header, the format version,
+// the fields in the binary format of io/byte_stream.hpp, then the FNV-1a 64 checksum of
+// every byte before it ----
 
 constexpr std::string_view checkpoint_magic = "stagger checkpoint\n";
-constexpr std::uint32_t checkpoint_version = 1;
-
-class ByteWriter {
-public:
-  void u64(std::uint64_t value) { raw(&value, sizeof value); }
-  void i64(std::int64_t value) { raw(&value, sizeof value); }
-  void f64(double value) { raw(&value, sizeof value); }  // bit pattern: bitwise restart
-  void bytes(std::string_view text) {
-    u64(text.size());
-    out_.append(text.data(), text.size());
-  }
-  std::string& text() { return out_; }
-
-private:
-  void raw(const void* data, std::size_t size) { out_.append(static_cast<const char*>(data), size); }
-  std::string out_;
-};
-
-class ByteReader {
-public:
-  ByteReader(std::string_view data, std::string path) : data_(data), path_(std::move(path)) {}
-  std::uint64_t u64() { return pod<std::uint64_t>(); }
-  std::int64_t i64() { return pod<std::int64_t>(); }
-  double f64() { return pod<double>(); }
-  std::string bytes() {
-    const std::uint64_t size = u64();
-    need(size);
-    std::string text(data_.substr(position_, size));
-    position_ += size;
-    return text;
-  }
-  bool at_end() const { return position_ == data_.size(); }
-
-private:
-  template <class T>
-  T pod() {
-    need(sizeof(T));
-    T value;
-    std::memcpy(&value, data_.data() + position_, sizeof(T));
-    position_ += sizeof(T);
-    return value;
-  }
-  void need(std::uint64_t size) const {
-    if (size > data_.size() - position_) {
-      throw Error("checkpoint '" + path_ + "' is truncated or corrupt; use another checkpoint or restart from t = 0");
-    }
-  }
-  std::string_view data_;
-  std::size_t position_ = 0;
-  std::string path_;
-};
+constexpr std::uint64_t checkpoint_version = 2;
 
 /// The run's own state beyond the simulation: what a restart needs to continue the same
 /// output schedule (dump times and numbering, .pvd entries, history rows, timings).
@@ -168,19 +122,34 @@ public:
 
   void load_checkpoint(const std::string& path) {
     const std::string data = io_detail::read_file(path);
+    const std::string source = "checkpoint '" + path + "'";
     if (data.compare(0, checkpoint_magic.size(), checkpoint_magic) != 0) {
       throw Error("'" + path + "' is not a stagger checkpoint (wrong header)");
     }
-    ByteReader in(std::string_view(data).substr(checkpoint_magic.size()), path);
-    const auto version = in.u64();
-    if (version != checkpoint_version) {
-      throw Error("checkpoint '" + path + "' has version " + std::to_string(version) + ", this build reads version " +
-                  std::to_string(checkpoint_version));
+    const std::string_view body = std::string_view(data).substr(checkpoint_magic.size());
+    io_detail::ByteReader header(body, source);
+    const std::uint64_t version = header.u64();
+    // The checksum before anything else is believed; a file of another version has none
+    // where this one's would be, so the version decides which error to give.
+    bool intact = body.size() >= 16;
+    if (intact) {
+      io_detail::ByteReader trailer(body.substr(body.size() - 8), source);
+      intact = trailer.u64() == io_detail::fnv1a64(std::string_view(data).substr(0, data.size() - 8));
     }
+    if (version != checkpoint_version && (intact || version == 1)) {  // 1: before the checksum
+      throw Error(source + " has format version " + std::to_string(version) + ", this build reads version " +
+                  std::to_string(checkpoint_version) + "; restart from t = 0");
+    }
+    if (!intact) {
+      throw Error(source + " is corrupt or truncated (its checksum does not match); use another checkpoint or "
+                  "restart from t = 0");
+    }
+    io_detail::ByteReader in(body.substr(0, body.size() - 8), source);
+    in.u64();  // the version, checked above
     const std::string scene = in.bytes();
     if (scene != simulation_.problem().name) {
-      throw Error("checkpoint '" + path + "' was written by scene '" + scene + "', not '" +
-                  simulation_.problem().name + "'; restart with the scene it came from");
+      throw Error(source + " was written by scene '" + scene + "', not '" + simulation_.problem().name +
+                  "'; restart with the scene it came from");
     }
     DriverState state;
     state.next_dump_time = in.f64();
@@ -190,15 +159,24 @@ public:
     state.last_history_cycle = in.i64();
     state.loop_seconds = in.f64();
     state.wall_seconds = in.f64();
-    std::vector<std::pair<double, std::string>> entries(in.u64());
+    std::vector<std::pair<double, std::string>> entries(in.count(16, ".pvd entries"));
     for (auto& [time, file] : entries) {
       time = in.f64();
       file = in.bytes();
     }
     std::string history_rows = in.bytes();
-    const std::string blob = in.bytes();
-    if (!in.at_end()) throw Error("checkpoint '" + path + "' has trailing data; it is corrupt");
-    simulation_.restore(blob);
+    const std::string_view blob = in.bytes_view();
+    in.expect_end();
+    simulation_.restore(blob, source);
+    const double t_end = simulation_.problem().t_end;
+    if (!(t_end > simulation_.time())) {
+      auto shortest = [](double value) {  // the digits that read back as `value`
+        char text[32];
+        return std::string(text, std::to_chars(text, text + sizeof text, value).ptr);
+      };
+      throw Error(source + " is at t = " + shortest(simulation_.time()) + ", but the scene's end time is " +
+                  shortest(t_end) + ": a restart needs a later end time (time.end)");
+    }
     state_ = state;
     pvd_.restore(std::move(entries));
     history_.restore(std::move(history_rows));
@@ -318,8 +296,8 @@ private:
 
   void write_checkpoint() {
     history_.flush();
-    ByteWriter out;
-    out.text() = std::string(checkpoint_magic);
+    io_detail::ByteWriter out;
+    out.raw(checkpoint_magic);
     out.u64(checkpoint_version);
     out.bytes(simulation_.problem().name);
     out.f64(state_.next_dump_time);
@@ -336,7 +314,8 @@ private:
     }
     out.bytes(history_.text());
     out.bytes(simulation_.checkpoint());
-    write_file_atomically((directory_ / (control_.name + ".checkpoint")).string(), out.text());
+    out.u64(io_detail::fnv1a64(out.data()));
+    write_file_atomically((directory_ / (control_.name + ".checkpoint")).string(), out.data());
   }
 
   void print_progress(Clock::time_point loop_start, double loop_start_time, double t_end) const {

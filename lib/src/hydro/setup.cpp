@@ -11,7 +11,9 @@
 #include <sstream>
 
 #include "hydro/boundary.hpp"
+#include "hydro/physics_digest.hpp"
 #include "hydro/simulation_impl.hpp"
+#include "hydro/state_fields.hpp"
 #include "hydro/zone_geometry.hpp"
 #include "stagger/error.hpp"
 
@@ -102,7 +104,7 @@ void setup_edge_continuation(Simulation::Impl& s) {
 Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
   problem.validate();
   const Mesh& m = mesh();
-  const Index nz = m.num_zones(), np = m.num_points(), nc = m.num_corners();
+  const Index nz = m.num_zones(), np = m.num_points();
   const HydroOptions& opt = problem.options;
 
   zone_corner_begin = m.zone_corner_begin;
@@ -135,17 +137,12 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
   }
   edge_viscosity = opt.viscosity == Viscosity::edge;
   dt_min = opt.dt_min > 0 ? opt.dt_min : 1e-8 * problem.t_end;
+  setup_boundaries(*this);
+  has_external = !pressure_edges.empty() || (problem.sources && problem.sources->momentum);
+  // Every state array, sized by the state table (what the scene needs, nothing more).
+  allocate_state(*this);
 
   // Initial density and energy at zone centres; corner masses rho^0 A_c^0 (NUMERICS section 1).
-  zone_mass.assign(nz, 0.0);
-  point_mass.assign(np, 0.0);
-  e.assign(nz, 0.0);
-  rho.assign(nz, 0.0);
-  if (any_strength) {
-    for (auto* v : {&sxx, &syy, &sxy, &sxx_new, &syy_new, &sxy_new, &sxx_half, &syy_half, &sxy_half, &plastic,
-                    &plastic_new, &grad_xx, &grad_xy, &grad_yx, &grad_yy})
-      v->assign(nz, 0.0);
-  }
   std::vector<double> corner_area(kMaxZoneVertices);
   for (Index z = 0; z < nz; ++z) {
     const ZoneVertices v = load_vertices(m, z);
@@ -223,8 +220,6 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
   }
 
   // Point velocities: the first region set-up (in problem order) whose zones touch the point.
-  vx.assign(np, 0.0);
-  vy.assign(np, 0.0);
   std::vector<char> done(np, 0);
   for (const auto& setup : problem.regions) {
     const int r = m.region_index(setup.region);
@@ -246,10 +241,6 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
 
   // Programmed burn: lighting time and burn length per zone (fixed at t = 0).
   if (any_burn) {
-    burn.assign(nz, 0.0);
-    burn_new.assign(nz, 0.0);
-    lighting_time.assign(nz, std::numeric_limits<double>::infinity());
-    burn_length.assign(nz, 1.0);
     for (const auto& range : ranges) {
       const Material& mat = problem.materials[range.material];
       for (Index z = range.begin; z < range.end; ++z) {
@@ -278,42 +269,19 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
     }
   }
 
-  setup_boundaries(*this);
-  if (edge_viscosity) {
-    setup_edge_continuation(*this);
-    rho_half.assign(nz, 0.0);
-    c_half.assign(nz, 0.0);
-  }
-  has_external = !pressure_edges.empty() || (problem.sources && problem.sources->momentum);
-  if (has_external) {
-    ext_fx.assign(np, 0.0);
-    ext_fy.assign(np, 0.0);
-  }
-  if (problem.sources && problem.sources->momentum) {
-    src_fx.assign(np, 0.0);
-    src_fy.assign(np, 0.0);
-    corner_scratch.assign(nc, 0.0);
-  }
-  if (problem.sources && problem.sources->energy) source_energy.assign(nz, 0.0);
+  if (edge_viscosity) setup_edge_continuation(*this);
   constrained = constrained_points(*this);
   free_vx.assign(constrained.size(), 0.0);
   free_vy.assign(constrained.size(), 0.0);
 
-  // Work arrays.
   x = m.x;
   y = m.y;
-  for (auto* v : {&vx_new, &vy_new, &vx_star, &vy_star}) v->assign(np, 0.0);
-  if (any_strength || edge_viscosity || has_external || problem.sources) {
-    x_half.assign(np, 0.0);
-    y_half.assign(np, 0.0);
-  }
-  for (auto* v : {&area, &e_new, &p, &q, &c}) v->assign(nz, 0.0);
-  for (auto* v : {&corner_fx, &corner_fy}) v->assign(nc, 0.0);
 
   // Constrained points carry their prescribed velocity from t = 0 (no impulse in step one).
   apply_constraints(*this, vx, vy, 0.0);
   recompute_state();
   energy_initial = kinetic_energy() + internal_energy();
+  digest = setup_digest(*this);
 #ifdef __GLIBC__
   malloc_trim(0);  // hand the set-up's temporaries back to the OS before the long run
 #endif

@@ -3,10 +3,11 @@
 #include "stagger/simulation.hpp"
 
 #include <cmath>
-#include <cstring>
-#include <sstream>
 
+#include "hydro/physics_digest.hpp"
 #include "hydro/simulation_impl.hpp"
+#include "hydro/state_fields.hpp"
+#include "io/byte_stream.hpp"
 #include "stagger/error.hpp"
 
 namespace stagger {
@@ -102,97 +103,99 @@ void Simulation::set_observer(std::function<void(const Simulation&)> observer) {
   impl_->observer = std::move(observer);
 }
 
-// ---- checkpoints: a flat binary blob, versioned, checked against the mesh ----
+std::vector<Simulation::OutputField> Simulation::output_fields() const {
+  std::vector<OutputField> fields;
+  for (const StateField& f : state_fields()) {
+    if (!(f.flags & kDumped) || !present(*impl_, f.presence)) continue;
+    fields.push_back({f.output_name, f.entity == Entity::point, f.presence == Presence::always, f.output_role,
+                      (*impl_).*f.member});
+  }
+  return fields;
+}
+
+// ---- checkpoints: the state table's checkpointed arrays in the binary format of
+// io/byte_stream.hpp, behind the physics digest (docs/output.md, "Checkpoints") ----
 namespace {
-constexpr char kMagic[8] = {'S', 'T', 'G', 'C', 'K', 'P', 'T', '1'};
-
-struct Writer {
-  std::string out;
-  template <class T>
-  void value(const T& v) {
-    out.append(reinterpret_cast<const char*>(&v), sizeof(T));
-  }
-  void array(const std::vector<double>& v) {
-    value<std::uint64_t>(v.size());
-    if (!v.empty()) out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(double));
-  }
-};
-
-struct Reader {
-  std::string_view in;
-  std::size_t pos = 0;
-  template <class T>
-  T value() {
-    if (pos + sizeof(T) > in.size()) throw Error("checkpoint is truncated");
-    T v;
-    std::memcpy(&v, in.data() + pos, sizeof(T));
-    pos += sizeof(T);
-    return v;
-  }
-  void array(std::vector<double>& v, const char* name) {
-    const auto n = value<std::uint64_t>();
-    if (n != v.size()) {
-      std::ostringstream msg;
-      msg << "checkpoint does not match this problem: field '" << name << "' has " << n << " values, expected "
-          << v.size();
-      throw Error(msg.str());
-    }
-    if (pos + n * sizeof(double) > in.size()) throw Error("checkpoint is truncated");
-    if (n > 0) std::memcpy(v.data(), in.data() + pos, n * sizeof(double));  // empty fields: no pointer
-    pos += n * sizeof(double);
-  }
-};
+constexpr std::string_view kBlobMagic = "STGCKPT2";  // the last character is the blob's version
 }  // namespace
 
 std::string Simulation::checkpoint() const {
   const Impl& s = *impl_;
-  Writer w;
-  w.out.append(kMagic, sizeof(kMagic));
-  w.value<std::int64_t>(s.mesh().num_points());
-  w.value<std::int64_t>(s.mesh().num_zones());
-  w.value(s.t);
-  w.value(s.dt_last);
-  w.value(s.dt_next);
-  w.value(s.dt_control_prev);
-  w.value<std::int64_t>(s.cycle);
-  w.value<std::int64_t>(s.dt_zone);
-  w.value<std::uint8_t>(s.have_previous_forces ? 1 : 0);
-  w.value(s.energy_initial);
-  w.value(s.boundary_work);
-  w.value(s.source_work);
-  for (const auto* v : {&s.x, &s.y, &s.vx, &s.vy, &s.e, &s.q, &s.corner_fx, &s.corner_fy, &s.sxx, &s.syy, &s.sxy,
-                        &s.plastic, &s.burn})
-    w.array(*v);
-  return w.out;
+  io_detail::ByteWriter w;
+  w.raw(kBlobMagic);
+  write_digest(w, s.digest);
+  w.f64(s.problem.t_end);  // the functions of time are sampled in [0, t_end]
+  write_digest(w, sampled_digest(s, s.problem.t_end));
+  w.f64(s.t);
+  w.f64(s.dt_last);
+  w.f64(s.dt_next);
+  w.f64(s.dt_control_prev);
+  w.i64(s.cycle);
+  w.i64(s.dt_zone);
+  w.u8(s.have_previous_forces ? 1 : 0);
+  w.f64(s.energy_initial);
+  w.f64(s.boundary_work);
+  w.f64(s.source_work);
+  for (const StateField& f : state_fields()) {
+    if (!(f.flags & kCheckpointed)) continue;
+    w.bytes(f.name);
+    w.doubles(s.*f.member);  // empty when absent
+  }
+  return w.take();
 }
 
-void Simulation::restore(std::string_view blob) {
+void Simulation::restore(std::string_view blob, const std::string& source) {
   Impl& s = *impl_;
-  if (blob.size() < sizeof(kMagic) || std::memcmp(blob.data(), kMagic, sizeof(kMagic)) != 0)
-    throw Error("not a Stagger checkpoint (bad magic number)");
-  Reader r{blob, sizeof(kMagic)};
-  const auto np = r.value<std::int64_t>(), nz = r.value<std::int64_t>();
-  if (np != s.mesh().num_points() || nz != s.mesh().num_zones()) {
-    std::ostringstream msg;
-    msg << "checkpoint is for a mesh of " << np << " points and " << nz << " zones; this problem has "
-        << s.mesh().num_points() << " and " << s.mesh().num_zones();
-    throw Error(msg.str());
+  io_detail::ByteReader r(blob, source);
+  if (blob.size() < kBlobMagic.size() || !r.raw_equals(kBlobMagic)) {
+    if (blob.substr(0, kBlobMagic.size() - 1) == kBlobMagic.substr(0, kBlobMagic.size() - 1))
+      r.fail("holds a simulation state of another format version; this build reads version " +
+             std::string(1, kBlobMagic.back()) + ": restart from t = 0");
+    r.fail("is not a Stagger simulation state (bad magic number)");
   }
-  s.t = r.value<double>();
-  s.dt_last = r.value<double>();
-  const double dt_next = r.value<double>();
-  s.dt_control_prev = r.value<double>();
-  s.cycle = static_cast<long>(r.value<std::int64_t>());
-  const auto dt_zone = static_cast<Index>(r.value<std::int64_t>());
-  s.have_previous_forces = r.value<std::uint8_t>() != 0;
-  s.energy_initial = r.value<double>();
-  s.boundary_work = r.value<double>();
-  s.source_work = r.value<double>();
-  const char* names[] = {"x", "y", "vx", "vy", "e", "q", "fx", "fy", "sxx", "syy", "sxy", "plastic", "burn"};
-  int i = 0;
-  for (auto* v : {&s.x, &s.y, &s.vx, &s.vy, &s.e, &s.q, &s.corner_fx, &s.corner_fy, &s.sxx, &s.syy, &s.sxy, &s.plastic,
-                  &s.burn})
-    r.array(*v, names[i++]);
+  // The physics first: a checkpoint of other physics would "continue" a different problem.
+  std::vector<DigestEntry> saved = read_digest(r);
+  const double t_reference = r.f64();
+  std::vector<DigestEntry> saved_sampled = read_digest(r);
+  saved.insert(saved.end(), saved_sampled.begin(), saved_sampled.end());
+  std::vector<DigestEntry> current = s.digest;
+  const std::vector<DigestEntry> current_sampled = sampled_digest(s, t_reference);
+  current.insert(current.end(), current_sampled.begin(), current_sampled.end());
+  if (const std::string differences = digest_differences(saved, current); !differences.empty()) {
+    r.fail("was written for other physics than this scene's: " + differences +
+           " (a restart may change only the end time and the output settings)");
+  }
+  const double t = r.f64(), dt_last = r.f64(), dt_next = r.f64(), dt_control_prev = r.f64();
+  const long cycle = static_cast<long>(r.i64());
+  const auto dt_zone = static_cast<Index>(r.i64());
+  const bool have_previous_forces = r.u8() != 0;
+  const double energy_initial = r.f64(), boundary_work = r.f64(), source_work = r.f64();
+  // Two passes over the arrays: check every name and size, then copy, so that a bad blob
+  // leaves the state untouched.
+  io_detail::ByteReader arrays = r;
+  for (const StateField& f : state_fields()) {
+    if (!(f.flags & kCheckpointed)) continue;
+    if (r.bytes_view() != f.name) r.fail(std::string("is corrupt: expected the field '") + f.name + "'");
+    const std::size_t expected = (s.*f.member).size();
+    if (const std::uint64_t count = r.skip_doubles(); count != expected) {
+      r.fail(std::string("field '") + f.name + "' has " + std::to_string(count) + " values, this problem has " +
+             std::to_string(expected));
+    }
+  }
+  r.expect_end();
+  for (const StateField& f : state_fields()) {
+    if (!(f.flags & kCheckpointed)) continue;
+    arrays.bytes_view();
+    arrays.doubles(s.*f.member, f.name);
+  }
+  s.t = t;
+  s.dt_last = dt_last;
+  s.dt_control_prev = dt_control_prev;
+  s.cycle = cycle;
+  s.have_previous_forces = have_previous_forces;
+  s.energy_initial = energy_initial;
+  s.boundary_work = boundary_work;
+  s.source_work = source_work;
   s.recompute_state();
   s.dt_next = dt_next;
   s.dt_zone = dt_zone;

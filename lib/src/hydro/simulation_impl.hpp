@@ -48,6 +48,13 @@ struct EdgeContinuation {
 
 std::string describe_zone(const Simulation::Impl& s, Index z);
 
+// One entry of the physics digest a checkpoint carries (physics_digest.hpp): a number or
+// a name as text, or the hex FNV-1a hash of an array.
+struct DigestEntry {
+  std::string section, key, value;
+  bool hashed = false;
+};
+
 struct Simulation::Impl {
   Problem problem;
   const Mesh& mesh() const { return problem.mesh; }
@@ -61,6 +68,8 @@ struct Simulation::Impl {
   std::span<const Index> zone_corner_begin, corner_point, point_corner_begin, point_corners;
   std::vector<ZoneRange> ranges;
 
+  // The state arrays: every point, zone and corner array below is listed in the state table
+  // (state_fields.cpp), which sizes them (allocate_state), checkpoints, swaps and dumps them.
   // Points.
   std::vector<double> x, y;
   std::vector<double> x_half, y_half;  // only when strength, edge q or external forces need them
@@ -91,7 +100,7 @@ struct Simulation::Impl {
   std::vector<double> source_energy;           // energy added by the energy source this step, per zone
   bool has_external = false;
   std::vector<Index> constrained;              // points whose velocity constraints may change
-  std::vector<double> free_vx, free_vy;        // their velocity before the constraints
+  std::vector<double> free_vx, free_vy;        // their velocity before the constraints (sized by `constrained`)
 
   // Time and bookkeeping.
   double t = 0, dt_last = 0, dt_next = 0, dt_control_prev = 0;
@@ -100,6 +109,9 @@ struct Simulation::Impl {
   double energy_initial = 0, boundary_work = 0, source_work = 0;
   enum class DtReason { cfl, growth, initial, maximum, retry, landing } dt_reason = DtReason::cfl;
   Index dt_zone = -1;  // zone that limited the last CFL/volume candidate
+
+  // What defines the physics, fixed at set-up (checkpoints carry it; a restart compares it).
+  std::vector<DigestEntry> digest;
 
   std::shared_ptr<Remap> remap;
   std::function<void(const Simulation&)> observer;

@@ -15,6 +15,7 @@
 #include "eos/eos_kernels.hpp"
 #include "hydro/boundary.hpp"
 #include "hydro/simulation_impl.hpp"
+#include "hydro/state_fields.hpp"
 #include "hydro/zone_geometry.hpp"
 #include "hydro/zone_physics.hpp"
 #include "stagger/error.hpp"
@@ -653,16 +654,7 @@ bool Simulation::Impl::try_step(double dt) {
     x[p] = x[p] + dt * 0.5 * (vx[p] + vx_new[p]);
     y[p] = y[p] + dt * 0.5 * (vy[p] + vy_new[p]);
   }
-  vx.swap(vx_new);
-  vy.swap(vy_new);
-  e.swap(e_new);
-  if (any_strength) {
-    sxx.swap(sxx_new);
-    syy.swap(syy_new);
-    sxy.swap(sxy_new);
-    plastic.swap(plastic_new);
-  }
-  if (any_burn) burn.swap(burn_new);
+  swap_new_into_current(*this);  // v, e, S, plastic strain, burn (the state table)
   have_previous_forces = true;
   boundary_work += constraint_work + external_work;
   source_work += source_added;

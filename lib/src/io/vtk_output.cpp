@@ -96,56 +96,59 @@ void write_grid(vtkUnstructuredGrid* grid, const std::string& path) {
   io_detail::replace_file(temporary, target);
 }
 
+void add_von_mises(vtkUnstructuredGrid* grid, std::span<const double> sxx, std::span<const double> syy,
+                   std::span<const double> sxy) {
+  vtkNew<vtkDoubleArray> von_mises;
+  von_mises->SetName("von_mises");
+  von_mises->SetNumberOfValues(static_cast<vtkIdType>(sxy.size()));
+  for (std::size_t z = 0; z < sxy.size(); ++z) {
+    // sigma_vm = sqrt(3/2 S:S) with the out-of-plane S_zz = -(S_xx + S_yy) (trace-free S).
+    const double szz = -(sxx[z] + syy[z]);
+    const double contraction = sxx[z] * sxx[z] + syy[z] * syy[z] + szz * szz + 2.0 * sxy[z] * sxy[z];
+    von_mises->SetValue(static_cast<vtkIdType>(z), std::sqrt(1.5 * contraction));
+  }
+  grid->GetCellData()->AddArray(von_mises);
+}
+
 }  // namespace
 
 void write_vtu(const std::string& path, const Simulation& simulation) {
   const Mesh& mesh = simulation.mesh();
   auto grid = make_grid(mesh, simulation.x(), simulation.y());
-  const auto nzones = static_cast<std::size_t>(mesh.num_zones());
+  using Role = Simulation::OutputRole;
 
-  add_zone_field(grid, "density", simulation.density());
-  add_zone_field(grid, "pressure", simulation.pressure());
-  add_zone_field(grid, "specific_internal_energy", simulation.specific_internal_energy());
-  add_zone_field(grid, "artificial_viscosity", simulation.artificial_viscosity());
-  add_zone_field(grid, "sound_speed", simulation.sound_speed());
+  // The state table's dumped arrays (Simulation::output_fields): the zone arrays of every
+  // run, the region (from the mesh), then those of the material models, the deviatoric
+  // stress followed by its von Mises invariant; then the point vectors.
+  const auto fields = simulation.output_fields();
+  for (const auto& f : fields)
+    if (!f.on_points && f.always) add_zone_field(grid, std::string(f.name).c_str(), f.values);
   add_region_field(grid, mesh);
-
-  if (simulation.has_strength()) {
-    const auto sxx = simulation.stress_xx();
-    const auto syy = simulation.stress_yy();
-    const auto sxy = simulation.stress_xy();
-    if (sxx.size() == nzones && syy.size() == nzones && sxy.size() == nzones) {
-      add_zone_field(grid, "deviatoric_stress_xx", sxx);
-      add_zone_field(grid, "deviatoric_stress_yy", syy);
-      add_zone_field(grid, "deviatoric_stress_xy", sxy);
-      vtkNew<vtkDoubleArray> von_mises;
-      von_mises->SetName("von_mises");
-      von_mises->SetNumberOfValues(static_cast<vtkIdType>(nzones));
-      for (std::size_t z = 0; z < nzones; ++z) {
-        // sigma_vm = sqrt(3/2 S:S) with the out-of-plane S_zz = -(S_xx + S_yy) (trace-free S).
-        const double szz = -(sxx[z] + syy[z]);
-        const double contraction = sxx[z] * sxx[z] + syy[z] * syy[z] + szz * szz + 2.0 * sxy[z] * sxy[z];
-        von_mises->SetValue(static_cast<vtkIdType>(z), std::sqrt(1.5 * contraction));
-      }
-      grid->GetCellData()->AddArray(von_mises);
+  std::span<const double> sxx, syy;
+  for (const auto& f : fields) {
+    if (f.on_points || f.always) continue;
+    add_zone_field(grid, std::string(f.name).c_str(), f.values);
+    if (f.role == Role::deviator_xx) sxx = f.values;
+    if (f.role == Role::deviator_yy) syy = f.values;
+    if (f.role == Role::deviator_xy && sxx.size() == f.values.size() && syy.size() == f.values.size())
+      add_von_mises(grid, sxx, syy, f.values);
+  }
+  std::string active_vectors;
+  for (const auto& fx : fields) {
+    if (!fx.on_points || fx.role != Role::vector_x) continue;
+    for (const auto& fy : fields) {
+      if (!fy.on_points || fy.role != Role::vector_y || fy.name != fx.name) continue;
+      const std::string name(fx.name);
+      vtkNew<vtkDoubleArray> vector;
+      vector->SetName(name.c_str());
+      vector->SetNumberOfComponents(3);
+      vector->SetNumberOfTuples(mesh.num_points());
+      for (Index p = 0; p < mesh.num_points(); ++p) vector->SetTuple3(p, fx.values[p], fy.values[p], 0.0);
+      grid->GetPointData()->AddArray(vector);
+      if (active_vectors.empty()) active_vectors = name;
     }
-    const auto plastic = simulation.plastic_strain();
-    if (plastic.size() == nzones) add_zone_field(grid, "plastic_strain", plastic);
   }
-  if (simulation.has_burn()) {
-    const auto burn = simulation.burn_fraction();
-    if (burn.size() == nzones) add_zone_field(grid, "burn_fraction", burn);
-  }
-
-  const auto vx = simulation.velocity_x();
-  const auto vy = simulation.velocity_y();
-  vtkNew<vtkDoubleArray> velocity;
-  velocity->SetName("velocity");
-  velocity->SetNumberOfComponents(3);
-  velocity->SetNumberOfTuples(mesh.num_points());
-  for (Index p = 0; p < mesh.num_points(); ++p) velocity->SetTuple3(p, vx[p], vy[p], 0.0);
-  grid->GetPointData()->AddArray(velocity);
-  grid->GetPointData()->SetActiveVectors("velocity");
+  if (!active_vectors.empty()) grid->GetPointData()->SetActiveVectors(active_vectors.c_str());
 
   // ParaView reads the time of a single file from the TimeValue field.
   vtkNew<vtkDoubleArray> time;

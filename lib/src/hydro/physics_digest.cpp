@@ -6,6 +6,8 @@
 #include <set>
 #include <variant>
 
+#include "stagger/option_table.hpp"
+
 namespace stagger {
 
 namespace {
@@ -153,24 +155,15 @@ void material_entries(const Material& mat, Digest& d) {
 }
 
 void numerics_entries(const HydroOptions& o, Digest& d) {
-  d.value("numerics", "cfl", o.cfl);
-  d.value("numerics", "viscosity", o.viscosity == Viscosity::bulk ? "bulk" : "edge");
-  d.value("numerics", "q1", o.q1);
-  d.value("numerics", "q2", o.q2);
-  d.value("numerics", "edge_c1", o.edge_c1);
-  d.value("numerics", "edge_c2", o.edge_c2);
-  d.value("numerics", "edge_limiter", o.edge_limiter ? "true" : "false");
-  d.value("numerics", "hourglass", o.hourglass == Hourglass::gamma ? "gamma" : "flanagan_belytschko");
-  d.value("numerics", "hourglass_coefficient", o.hourglass_coefficient);
-  d.value("numerics", "stress_update", o.stress_update == StressUpdate::rate ? "rate" : "objective");
-  d.value("numerics", "fresh_predictor", o.fresh_predictor ? "true" : "false");
-  d.value("numerics", "volume_limit", o.volume_limit);
-  d.value("numerics", "dt_growth", o.dt_growth);
-  d.value("numerics", "dt_init", o.dt_init);
-  d.value("numerics", "dt_max", o.dt_max);
-  d.value("numerics", "dt_min", o.dt_min);
-  d.value("numerics", "max_retries", o.max_retries);
-  d.value("numerics", "check_corner_areas", o.check_corner_areas ? "true" : "false");
+  // Every row of the [numerics] option table, so that an option added there is compared too.
+  for (const auto& row : numerics_option_table().options) {
+    const double v = row.get(o);
+    if (row.type == OptionType::number || row.type == OptionType::integer) {
+      d.value("numerics", row.key, v);
+    } else {
+      d.value("numerics", row.key, row.value_text(v));
+    }
+  }
 }
 
 // Keys are unique within a section (a repeated one gets " #2", " #3", ...).

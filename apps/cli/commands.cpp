@@ -5,6 +5,7 @@
 #include <omp.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <chrono>
 #include <filesystem>
@@ -124,6 +125,12 @@ void check_output_directory(const std::string& directory) {
     throw Error(what + "'" + existing.string() + "' is not writable" + todo);
 }
 
+// Set-ups that make no sense but may be meant: one line each on stderr, for check and run.
+void print_warnings(const Scene& scene) {
+  std::cout.flush();
+  for (const auto& warning : scene.warnings) std::cerr << "stagger: warning: " << warning << "\n";
+}
+
 // Builds the Simulation; its set-up errors (which the scene reader cannot see, e.g. periodic
 // sides that do not match) are located at the scene file, the same for `run` and `check`.
 Simulation set_up(Problem problem, const std::string& scene_file) {
@@ -168,6 +175,7 @@ int run_command(const std::vector<std::string>& args) {
   control.progress = !quiet && isatty(STDERR_FILENO) != 0;
   for (const auto& note : scene.notes)
     if (!quiet) std::cerr << "stagger: note: " << note << "\n";
+  print_warnings(scene);
 
   check_output_directory(control.output_directory);
   Simulation simulation = set_up(std::move(scene.problem), scene_path);
@@ -209,7 +217,8 @@ int check_command(const std::vector<std::string>& args) {
   check_output_directory(arguments.has("--out") ? arguments.value("--out") : scene.control.output_directory);
   static_cast<void>(set_up(scene.problem, scene_path));
   std::cout << describe(scene);
-  std::cout << "scene is valid\n";
+  print_warnings(scene);
+  std::cout << "scene is valid" << (scene.warnings.empty() ? "" : " (with warnings, on stderr)") << "\n";
   return 0;
 }
 
@@ -234,7 +243,8 @@ int mesh_command(const std::vector<std::string>& args) {
     } catch (const std::exception&) {
       used = 0;
     }
-    if (used != value_text.size()) throw UsageError("--set " + text + ": '" + value_text + "' is not a number");
+    if (used != value_text.size() || !std::isfinite(value))
+      throw UsageError("--set " + text + ": '" + value_text + "' is not a finite number");
     options.parameters.emplace_back(name, value);
   }
   if (arguments.has("--triangles")) {
@@ -281,10 +291,13 @@ int mesh_command(const std::vector<std::string>& args) {
             << number(report.topology_seconds) << " s, other checks and arrays "
             << number(build_seconds - report.topology_seconds) << " s\n";
   if (!output.empty()) {
+    // Atomic like every output (temporary name, checked, fsync, rename): gmsh does not report
+    // write errors, so the file must end with its last section marker to count as written.
     if (std::filesystem::path(output).extension() == ".msh")
-      meshgen::write_msh(output, mesh);
+      write_file_atomically(output, [&](const std::string& temporary) { meshgen::write_msh(temporary, mesh); },
+                            "$EndElements\n");
     else
-      write_mesh_vtu(output, mesh);
+      write_mesh_vtu(output, mesh);  // atomic and checked by the VTK writer
     std::cout << "wrote " << output << "\n";
   }
   if (arguments.flag("--check") && quality.non_convex_zones > 0)

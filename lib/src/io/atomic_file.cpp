@@ -104,6 +104,10 @@ void replace_file(const fs::path& from, const fs::path& to) {
 }
 
 std::string read_file(const std::string& path) {
+  // A device or a FIFO (e.g. /dev/zero) would never end or never come: regular files only.
+  std::error_code ec;
+  if (fs::exists(path, ec) && !fs::is_regular_file(path, ec))
+    throw Error("cannot read '" + path + "': not a regular file; check the path");
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     throw Error("cannot read '" + path + "': " + std::strerror(errno) + "; check the path");

@@ -142,6 +142,9 @@ Mesh read_mesh_section(Section& section, const std::string& scene_file, std::vec
       const auto x = section.numbers("x", 2), y = section.numbers("y", 2);
       if (!(x[1] > x[0])) section.fail("x", "needs x0 < x1", "write x = [x0, x1]");
       if (!(y[1] > y[0])) section.fail("y", "needs y0 < y1", "write y = [y0, y1]");
+      // The extent and the zone widths must be finite numbers, not overflow to inf.
+      if (!std::isfinite(x[1] - x[0])) section.fail("x", "the extent x1 - x0 overflows", "use smaller coordinates");
+      if (!std::isfinite(y[1] - y[0])) section.fail("y", "the extent y1 - y0 overflows", "use smaller coordinates");
       check_refined({"nx", "ny"});
       const int nx = refined_count("nx", positive_count("nx")), ny = refined_count("ny", positive_count("ny"));
       check_zone_total("nx", nx, "ny", ny);

@@ -44,7 +44,7 @@ private:
   std::string file_;
 };
 
-// The state at t = 0 of one zone, as the set-up will compute it (NUMERICS section 1).
+// The state at t = 0 of one zone, as the set-up will compute it (docs/algorithm.md §12).
 struct ZoneState {
   double rho = 0, c = 0, speed = 0, length = 0;  // c: with the elastic part (as the time step)
   double bulk = 0;                               // rho c^2 of the EOS alone
@@ -104,7 +104,7 @@ std::vector<ZoneState> initial_states(const Problem& problem) {
       s.speed = std::max(s.speed, std::hypot(vx, vy));
     }
     const double chord = longest_chord(mesh, z);
-    s.length = chord > 0 ? zone_area(mesh, z) / chord : 0;  // the CFL length (NUMERICS section 6)
+    s.length = chord > 0 ? zone_area(mesh, z) / chord : 0;  // the CFL length (docs/algorithm.md §9)
   }
   return states;
 }

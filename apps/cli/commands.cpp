@@ -291,7 +291,7 @@ int mesh_command(const std::vector<std::string>& args) {
             << number(report.topology_seconds) << " s, other checks and arrays "
             << number(build_seconds - report.topology_seconds) << " s\n";
   if (!output.empty()) {
-    // Atomic like every output (temporary name, checked, fsync, rename): gmsh does not report
+    // Atomic like every output (temporary name, checked, fdatasync, rename): gmsh does not report
     // write errors, so the file must end with its last section marker to count as written.
     if (std::filesystem::path(output).extension() == ".msh")
       write_file_atomically(output, [&](const std::string& temporary) { meshgen::write_msh(temporary, mesh); },

@@ -18,8 +18,8 @@ class Simulation;
 /// Named scalar results (error norms, diagnostics), in insertion order.
 using NamedValues = std::vector<std::pair<std::string, double>>;
 
-/// Writes `text` to `path` atomically (temporary file, fsync, rename). Every write, fsync,
-/// close and rename is checked: a full disk throws stagger::Error naming `path`.
+/// Writes `text` to `path` atomically (temporary file, fdatasync, rename). Every write,
+/// flush, close and rename is checked: a full disk throws stagger::Error naming `path`.
 void write_file_atomically(const std::string& path, const std::string& text);
 /// The same for a file written by someone else's code: `write(temporary)` writes it under a
 /// temporary name in the same directory; if `expected_tail` is given, the file must end

@@ -1,6 +1,6 @@
 // Every output file is written to a temporary name in its own directory and renamed, so a
 // crash or kill -9 at any moment leaves either the old complete file or the new one. Every
-// system call's result is checked: a full disk (ENOSPC, often reported only by fsync or
+// system call's result is checked: a full disk (ENOSPC, often reported only by fdatasync or
 // close) is an error naming the file, never a "completed" run with truncated output.
 #include "io/atomic_file.hpp"
 
@@ -87,10 +87,10 @@ void require_directory_of(const fs::path& path) {
 void replace_file(const fs::path& from, const fs::path& to) {
   const int fd = ::open(from.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) fail_and_remove(from, to.string(), "reopening the temporary file", errno);
-  if (::fsync(fd) != 0) {
+  if (::fdatasync(fd) != 0) {
     const int code = errno;
     ::close(fd);
-    fail_and_remove(from, to.string(), "flushing to disk (fsync)", code);
+    fail_and_remove(from, to.string(), "flushing to disk (fdatasync)", code);
   }
   if (::close(fd) != 0) fail_and_remove(from, to.string(), "closing", errno);
   std::error_code ec;

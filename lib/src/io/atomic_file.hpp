@@ -11,7 +11,7 @@ std::filesystem::path temporary_path(const std::filesystem::path& path);
 /// Throws stagger::Error naming `path` unless its directory exists and is a directory, and
 /// `path` itself is absent or a regular file (a device, directory or link is never replaced).
 void require_directory_of(const std::filesystem::path& path);
-/// Flushes `from` to disk (fsync), then renames it onto `to` (atomic on POSIX within one
+/// Flushes `from` to disk (fdatasync: its data and size), then renames it onto `to` (atomic on POSIX within one
 /// file system); on any failure removes `from` and throws naming `to` and the system error.
 void replace_file(const std::filesystem::path& from, const std::filesystem::path& to);
 /// Reads a whole file (binary); throws stagger::Error naming it.

@@ -41,6 +41,11 @@ options:
   --quiet               no progress line and no summary (errors still go to stderr)
   -h, --help            this help
 
+The output directory is locked for the run (a second run into it fails, naming the
+first one's pid); a fresh run removes the previous run's <scene>.pvd and
+<scene>_NNNNNN.vtu there first. Warnings about the set-up (docs/scenes.md) are printed
+on stderr before the first step.
+
 A progress line (cycle, time, dt, ETA) is shown when stderr is a terminal. At the end
 a summary is printed: cycles, final time, zone-cycles per second, the energy audit and
 any error norms. Exit status: 0 if the run reached time.end, 1 otherwise (the reason is
@@ -53,8 +58,11 @@ const char* const check_help =
 Parses the scene, meshes it, validates every value, sets up the initial state (without
 stepping) and prints the resolved set-up (mesh counts and quality, materials, regions,
 boundary conditions, numerical options, outputs). Also checks that the output directory
-could be created and written (nothing is created). Exit status 0 if the scene is valid;
-otherwise 1 with the same one-line error that 'stagger run' would give.
+could be created and written (nothing is created) and that the dump schedule stays
+within output.max_dumps. Set-ups that make no sense but may be meant (untagged boundary
+edges, fewer than 10 cycles, unit slips in strength or velocity) are printed as
+'stagger: warning:' lines on stderr. Exit status 0 if the scene is valid (also with
+warnings); otherwise 1 with the same one-line error that 'stagger run' would give.
 
 options:
   --set KEY=VALUE   as for 'stagger run'

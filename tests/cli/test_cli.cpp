@@ -1,6 +1,7 @@
 // The `stagger` executable: exit codes, one-line errors, mesh and run outputs.
 #include <gtest/gtest.h>
 
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -10,6 +11,8 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <chrono>
+#include <thread>
 
 namespace fs = std::filesystem;
 
@@ -366,6 +369,37 @@ Physical Curve("bottom") = {1}; Physical Curve("sides") = {2, 4};
   for (const char* text : {"square.toml:5: key 'mesh': 2 boundary edge(s) have no tag and will be traction-free",
                            "(0.25, 1)", "(0.75, 1)", "all within x in [0.25, 0.75], y in [1, 1]"})
     EXPECT_NE(check.err.find(text), std::string::npos) << text << " in " << check.err;
+}
+
+TEST_F(Cli, ASecondRunIntoTheSameDirectoryFailsWhileTheFirstRuns) {
+  std::string text = tiny_scene;
+  text.replace(text.find("end = 0.1"), 9, "end = 1000.0");  // ~10^5 cycles: runs until killed
+  text.replace(text.find("dump_interval = 0.05"), 20, "dump_interval = 0.0");
+  const std::string path = write("long.toml", text);
+  const fs::path out = directory_ / "shared";
+  const std::string first = std::string(STAGGER_BINARY_DIR) + "/bin/stagger run " + path + " --out " + out.string() +
+                            " --quiet --threads 1 >/dev/null 2>&1 & echo $!";
+  FILE* pipe = ::popen(first.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  long pid = 0;
+  ASSERT_EQ(std::fscanf(pipe, "%ld", &pid), 1);
+  ::pclose(pipe);
+  // Wait until the first run holds the lock (its pid is in the lock file).
+  for (int i = 0; i < 500 && read_text(out / ".stagger.lock").find(std::to_string(pid)) == std::string::npos; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  const Result second = stagger("run " + path + " --out " + out.string());
+  ::kill(static_cast<pid_t>(pid), SIGKILL);
+  expect_one_line_error(second);
+  EXPECT_NE(second.err.find("output directory '" + out.string() + "' is in use by another stagger run (pid " +
+                            std::to_string(pid) + ")"),
+            std::string::npos)
+      << second.err;
+  // Once the first run is gone (killed: the kernel drops its lock), the directory is free.
+  for (int i = 0; i < 500 && ::kill(static_cast<pid_t>(pid), 0) == 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  text = tiny_scene;
+  const Result third = stagger("run " + write("long.toml", text) + " --out " + out.string());
+  EXPECT_EQ(third.status, 0) << third.err;
 }
 
 TEST_F(Cli, RunRejectsBadThreadCounts) {

@@ -65,7 +65,8 @@ toml::table parse_assignment(const std::string& keys, const std::string& value, 
   } catch (const toml::parse_error&) {
     // A number TOML cannot hold (an integer beyond 64 bits) is an error, not a string.
     if (looks_numeric(value))
-      fail(label, "'" + value + "' is not a valid TOML number (integers must fit in 64 bits)");
+      fail(label, "'" + value + "' is not a valid TOML number (out of range: integers must fit in 64 bits, floats "
+                  "in a double)");
     // Not a TOML value: take it as a literal string (e.g. --set numerics.viscosity=edge).
     if (value.find('\'') != std::string::npos || value.find('\n') != std::string::npos)
       fail(label, "'" + value + "' is not a TOML value; quote strings");

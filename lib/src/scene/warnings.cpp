@@ -192,6 +192,12 @@ void review_scene(const toml::table& document, Scene& scene, const WarningThresh
   // The first time step, estimated as the set-up will take it: cfl * L / c over the zones
   // (no artificial viscosity yet, so the estimate is an upper bound), then dt_init, dt_max.
   const std::vector<ZoneState> states = initial_states(problem);
+  for (const ZoneState& s : states)
+    if (s.material >= 0 && !std::isfinite(s.c))
+      throw Error(key.at("material[" + std::to_string(s.material) + "]") + ": the initial state at " +
+                  point_text(s.centre_x, s.centre_y) + " (region '" + problem.regions[s.region].region +
+                  "', density " + show(s.rho) + ") has a non-finite sound speed; check the EOS constants and the "
+                  "initial state");
   const double drive = driver_speed(problem, states);
   double cfl_length_over_c = std::numeric_limits<double>::infinity();  // min L / c
   double length_over_signal = std::numeric_limits<double>::infinity();  // min L / (c + |v| + drive)

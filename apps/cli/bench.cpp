@@ -507,7 +507,8 @@ int bench_command(const std::vector<std::string>& args) {
     } catch (const std::exception&) {
       used = 0;
     }
-    if (used != text.size() || !(context.timeout > 0)) throw UsageError("--timeout '" + text + "' is not a positive number");
+    if (used != text.size() || !(context.timeout > 0) || !std::isfinite(context.timeout))
+      throw UsageError("--timeout '" + text + "' is not a positive finite number");
   }
   if (arguments.has("--repeat")) {
     const std::string text = arguments.value("--repeat");

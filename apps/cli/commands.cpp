@@ -5,6 +5,7 @@
 #include <omp.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <chrono>
 #include <filesystem>
@@ -40,6 +41,11 @@ options:
   --quiet               no progress line and no summary (errors still go to stderr)
   -h, --help            this help
 
+The output directory is locked for the run (a second run into it fails, naming the
+first one's pid); a fresh run removes the previous run's <scene>.pvd and
+<scene>_NNNNNN.vtu there first. Warnings about the set-up (docs/scenes.md) are printed
+on stderr before the first step.
+
 A progress line (cycle, time, dt, ETA) is shown when stderr is a terminal. At the end
 a summary is printed: cycles, final time, zone-cycles per second, the energy audit and
 any error norms. Exit status: 0 if the run reached time.end, 1 otherwise (the reason is
@@ -52,8 +58,11 @@ const char* const check_help =
 Parses the scene, meshes it, validates every value, sets up the initial state (without
 stepping) and prints the resolved set-up (mesh counts and quality, materials, regions,
 boundary conditions, numerical options, outputs). Also checks that the output directory
-could be created and written (nothing is created). Exit status 0 if the scene is valid;
-otherwise 1 with the same one-line error that 'stagger run' would give.
+could be created and written (nothing is created) and that the dump schedule stays
+within output.max_dumps. Set-ups that make no sense but may be meant (untagged boundary
+edges, fewer than 10 cycles, unit slips in strength or velocity) are printed as
+'stagger: warning:' lines on stderr. Exit status 0 if the scene is valid (also with
+warnings); otherwise 1 with the same one-line error that 'stagger run' would give.
 
 options:
   --set KEY=VALUE   as for 'stagger run'
@@ -124,6 +133,12 @@ void check_output_directory(const std::string& directory) {
     throw Error(what + "'" + existing.string() + "' is not writable" + todo);
 }
 
+// Set-ups that make no sense but may be meant: one line each on stderr, for check and run.
+void print_warnings(const Scene& scene) {
+  std::cout.flush();
+  for (const auto& warning : scene.warnings) std::cerr << "stagger: warning: " << warning << "\n";
+}
+
 // Builds the Simulation; its set-up errors (which the scene reader cannot see, e.g. periodic
 // sides that do not match) are located at the scene file, the same for `run` and `check`.
 Simulation set_up(Problem problem, const std::string& scene_file) {
@@ -168,6 +183,7 @@ int run_command(const std::vector<std::string>& args) {
   control.progress = !quiet && isatty(STDERR_FILENO) != 0;
   for (const auto& note : scene.notes)
     if (!quiet) std::cerr << "stagger: note: " << note << "\n";
+  print_warnings(scene);
 
   check_output_directory(control.output_directory);
   Simulation simulation = set_up(std::move(scene.problem), scene_path);
@@ -209,7 +225,8 @@ int check_command(const std::vector<std::string>& args) {
   check_output_directory(arguments.has("--out") ? arguments.value("--out") : scene.control.output_directory);
   static_cast<void>(set_up(scene.problem, scene_path));
   std::cout << describe(scene);
-  std::cout << "scene is valid\n";
+  print_warnings(scene);
+  std::cout << "scene is valid" << (scene.warnings.empty() ? "" : " (with warnings, on stderr)") << "\n";
   return 0;
 }
 
@@ -234,7 +251,8 @@ int mesh_command(const std::vector<std::string>& args) {
     } catch (const std::exception&) {
       used = 0;
     }
-    if (used != value_text.size()) throw UsageError("--set " + text + ": '" + value_text + "' is not a number");
+    if (used != value_text.size() || !std::isfinite(value))
+      throw UsageError("--set " + text + ": '" + value_text + "' is not a finite number");
     options.parameters.emplace_back(name, value);
   }
   if (arguments.has("--triangles")) {
@@ -281,10 +299,13 @@ int mesh_command(const std::vector<std::string>& args) {
             << number(report.topology_seconds) << " s, other checks and arrays "
             << number(build_seconds - report.topology_seconds) << " s\n";
   if (!output.empty()) {
+    // Atomic like every output (temporary name, checked, fdatasync, rename): gmsh does not report
+    // write errors, so the file must end with its last section marker to count as written.
     if (std::filesystem::path(output).extension() == ".msh")
-      meshgen::write_msh(output, mesh);
+      write_file_atomically(output, [&](const std::string& temporary) { meshgen::write_msh(temporary, mesh); },
+                            "$EndElements\n");
     else
-      write_mesh_vtu(output, mesh);
+      write_mesh_vtu(output, mesh);  // atomic and checked by the VTK writer
     std::cout << "wrote " << output << "\n";
   }
   if (arguments.flag("--check") && quality.non_convex_zones > 0)

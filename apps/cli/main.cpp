@@ -1,5 +1,6 @@
 // stagger: the command line. Every subcommand is a thin layer over the public API; this
 // file only dispatches and turns every error into exit status 1 and ONE line on stderr.
+#include <csignal>
 #include <exception>
 #include <functional>
 #include <iostream>
@@ -89,6 +90,9 @@ int fail(const std::string& message) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A file-size limit (ulimit -f) then fails the write (EFBIG), reported like a full disk,
+  // instead of killing the process with no message.
+  std::signal(SIGXFSZ, SIG_IGN);
   const std::vector<std::string> args(argv + 1, argv + argc);
   try {
     if (args.empty()) return fail("no command given; see 'stagger --help'");

@@ -1,7 +1,9 @@
 // The `stagger` executable: exit codes, one-line errors, mesh and run outputs.
 #include <gtest/gtest.h>
 
+#include <signal.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -9,6 +11,8 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <chrono>
+#include <thread>
 
 namespace fs = std::filesystem;
 
@@ -29,8 +33,10 @@ std::string read_text(const fs::path& path) {
 class Cli : public ::testing::Test {
 protected:
   void SetUp() override {
+    // The pid keeps concurrent test runs (several build trees on one machine) apart.
     directory_ = fs::temp_directory_path() /
-                 (std::string("stagger_cli_test_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+                 (std::string("stagger_cli_test_") + ::testing::UnitTest::GetInstance()->current_test_info()->name() +
+                  "_" + std::to_string(::getpid()));
     fs::remove_all(directory_);
     fs::create_directories(directory_);
   }
@@ -65,7 +71,7 @@ protected:
 const char* const tiny_scene = R"([scene]
 name = "tiny"
 [time]
-end = 0.01
+end = 0.1
 [mesh]
 generator = "rectangle"
 x = [0.0, 1.0]
@@ -85,7 +91,7 @@ pressure = "x < 0.5 ? 1.0 : 0.1"
 tags = ["left", "right", "bottom", "top"]
 type = "wall"
 [output]
-dump_interval = 0.005
+dump_interval = 0.05
 )";
 
 TEST_F(Cli, HelpDescribesCommandsAndTheOutputContract) {
@@ -225,7 +231,175 @@ TEST_F(Cli, RunWritesTheOutputContract) {
       ++vtu_files;
       EXPECT_NE(pvd.find(entry.path().filename().string()), std::string::npos) << entry.path();
     }
-  EXPECT_GE(vtu_files, 3);  // t = 0, 0.005, 0.01
+  EXPECT_GE(vtu_files, 3);  // t = 0, 0.05, 0.1
+}
+
+TEST_F(Cli, MeshOutputIsAtomicAndAFullDiskIsAnError) {
+  const std::string geo = std::string(STAGGER_SOURCE_DIR) + "/geometries/shock_tube.geo";
+  for (const char* name : {"m.msh", "m.vtu"}) {
+    const fs::path target = directory_ / name;
+    // A 4 KiB file-size limit: the write fails as on a full disk (stagger ignores SIGXFSZ).
+    std::ofstream(target) << "previous";
+    const std::string limited = "sh -c 'ulimit -f 4; exec " + std::string(STAGGER_BINARY_DIR) + "/bin/stagger mesh " +
+                                geo + " --set nx=400 -o " + target.string() + "'";
+    const int raw = std::system((limited + " >" + (directory_ / "o.txt").string() + " 2>" +
+                                 (directory_ / "e.txt").string()).c_str());
+    const std::string err = read_text(directory_ / "e.txt");
+    EXPECT_EQ(WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, 1) << err;
+    EXPECT_NE(err.find("stagger: error: cannot write '" + target.string() + "'"), std::string::npos) << err;
+    EXPECT_EQ(read_text(target), "previous") << "the old file must stay whole";
+    int hidden = 0;
+    for (const auto& entry : fs::directory_iterator(directory_)) hidden += entry.path().filename().string()[0] == '.';
+    EXPECT_EQ(hidden, 0) << "a temporary file was left behind";
+    // Without the limit the same command replaces the file.
+    const Result written = stagger("mesh " + geo + " --set nx=400 -o " + target.string());
+    EXPECT_EQ(written.status, 0) << written.err;
+    EXPECT_GT(fs::file_size(target), 4096u);
+  }
+}
+
+TEST_F(Cli, ShippedScenesGiveNoWarnings) {
+  const fs::path scenes = fs::path(STAGGER_SOURCE_DIR) / "apps" / "scenes";
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator(scenes)) {
+    if (entry.path().extension() != ".toml") continue;
+    ++count;
+    const Result result = stagger("check " + entry.path().string() + " --out " + (directory_ / "o").string());
+    EXPECT_EQ(result.status, 0) << entry.path() << result.err;
+    EXPECT_EQ(result.err.find("warning"), std::string::npos) << entry.path() << ": " << result.err;
+  }
+  EXPECT_GE(count, 10);
+}
+
+// Each warning: printed by check (stderr, after the description) and at the start of run,
+// one line naming the file, line and key; the scene still runs.
+TEST_F(Cli, SetUpsThatMakeNoSenseGetAWarning) {
+  struct Case {
+    std::string name, edit_from, edit_to, expected;
+  };
+  const std::vector<Case> cases = {
+      {"few_cycles", "end = 0.1", "end = 0.001",
+       "few_cycles.toml:4: key 'time.end': 0.001 is about 1 time step(s)"},
+      {"fast", "pressure = \"x < 0.5 ? 1.0 : 0.1\"", "pressure = \"x < 0.5 ? 1.0 : 0.1\"\nvelocity = [30.0, 0.0]",
+       "fast.toml:20: key 'region[0].velocity': the initial speed is above 10 times the sound speed in 10 zone(s)"},
+  };
+  for (const auto& c : cases) {
+    std::string text = tiny_scene;
+    text.replace(text.find(c.edit_from), c.edit_from.size(), c.edit_to);
+    const std::string path = write(c.name + ".toml", text);
+    const Result check = stagger("check " + path);
+    EXPECT_EQ(check.status, 0) << check.err;
+    EXPECT_NE(check.err.find("stagger: warning: " + std::string(directory_ / c.expected)), std::string::npos)
+        << check.err;
+    EXPECT_NE(check.out.find("scene is valid (with warnings"), std::string::npos) << check.out;
+    const Result run = stagger("run " + path + " --out " + (directory_ / ("run_" + c.name)).string());
+    EXPECT_EQ(run.status, 0) << run.err;
+    EXPECT_NE(run.err.find("stagger: warning: " + std::string(directory_ / c.expected)), std::string::npos)
+        << run.err;
+  }
+}
+
+TEST_F(Cli, StrengthUnitSlipsGetAWarning) {
+  const std::string solid = R"([time]
+end = 1e-5
+[mesh]
+generator = "rectangle"
+x = [0.0, 0.01]
+y = [0.0, 0.001]
+nx = 10
+ny = 1
+[[material]]
+name = "copper"
+eos = "mie_gruneisen"
+rho0 = 8930.0
+a0 = 3940.0
+gamma0 = 2.0
+s = 1.49
+[material.strength]
+shear_modulus = SHEAR
+yield_stress = YIELD
+[[region]]
+name = "domain"
+material = "copper"
+density = 8930.0
+pressure = 0.0
+[[boundary]]
+tags = ["left", "right", "bottom", "top"]
+type = "wall"
+)";
+  auto scene = [&](const std::string& shear, const std::string& yield) {
+    std::string text = solid;
+    text.replace(text.find("SHEAR"), 5, shear);
+    text.replace(text.find("YIELD"), 5, yield);
+    return write("solid.toml", text);
+  };
+  const Result good = stagger("check " + scene("45e9", "90e6"));
+  EXPECT_EQ(good.status, 0) << good.err;
+  EXPECT_TRUE(good.err.empty()) << good.err;
+  // A yield stress in Pa where the modulus is in Mbar (and the other way round).
+  const Result yield = stagger("check " + scene("0.45", "90e6"));
+  EXPECT_EQ(yield.status, 0) << yield.err;
+  EXPECT_NE(yield.err.find("solid.toml:18: key 'material[0].strength.yield_stress': 90000000 is 200000000 times the "
+                           "shear modulus 0.45"),
+            std::string::npos)
+      << yield.err;
+  EXPECT_NE(yield.err.find("solid.toml:17: key 'material[0].strength.shear_modulus': 0.45 is"), std::string::npos)
+      << yield.err;
+  const Result shear = stagger("check " + scene("45e15", "90e6"));
+  EXPECT_NE(shear.err.find("key 'material[0].strength.shear_modulus': 4.5e+16 is"), std::string::npos) << shear.err;
+  EXPECT_NE(shear.err.find("times the bulk modulus rho c^2 = "), std::string::npos) << shear.err;
+}
+
+TEST_F(Cli, UntaggedBoundaryEdgesGetAWarningWithTheirPlace) {
+  write("square.geo", R"(Point(1) = {0, 0, 0}; Point(2) = {1, 0, 0}; Point(3) = {1, 1, 0}; Point(4) = {0, 1, 0};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+Transfinite Curve {1, 2, 3, 4} = 3; Transfinite Surface {1}; Recombine Surface {1};
+Physical Surface("domain") = {1};
+Physical Curve("bottom") = {1}; Physical Curve("sides") = {2, 4};
+)");
+  std::string text = tiny_scene;
+  text.replace(text.find("generator = \"rectangle\""), 23, "file = \"square.geo\"");
+  for (const char* key : {"x = [0.0, 1.0]\n", "y = [0.0, 0.1]\n", "nx = 10\n", "ny = 1\n"})
+    text.erase(text.find(key), std::string(key).size());
+  const std::string tags = "tags = [\"left\", \"right\", \"bottom\", \"top\"]";
+  text.replace(text.find(tags), tags.size(), "tags = [\"bottom\", \"sides\"]");
+  const Result check = stagger("check " + write("square.toml", text));
+  EXPECT_EQ(check.status, 0) << check.err;
+  for (const char* text : {"square.toml:5: key 'mesh': 2 boundary edge(s) have no tag and will be traction-free",
+                           "(0.25, 1)", "(0.75, 1)", "all within x in [0.25, 0.75], y in [1, 1]"})
+    EXPECT_NE(check.err.find(text), std::string::npos) << text << " in " << check.err;
+}
+
+TEST_F(Cli, ASecondRunIntoTheSameDirectoryFailsWhileTheFirstRuns) {
+  std::string text = tiny_scene;
+  text.replace(text.find("end = 0.1"), 9, "end = 1000.0");  // ~10^5 cycles: runs until killed
+  text.replace(text.find("dump_interval = 0.05"), 20, "dump_interval = 0.0");
+  const std::string path = write("long.toml", text);
+  const fs::path out = directory_ / "shared";
+  const std::string first = std::string(STAGGER_BINARY_DIR) + "/bin/stagger run " + path + " --out " + out.string() +
+                            " --quiet --threads 1 >/dev/null 2>&1 & echo $!";
+  FILE* pipe = ::popen(first.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  long pid = 0;
+  ASSERT_EQ(std::fscanf(pipe, "%ld", &pid), 1);
+  ::pclose(pipe);
+  // Wait until the first run holds the lock (its pid is in the lock file).
+  for (int i = 0; i < 500 && read_text(out / ".stagger.lock").find(std::to_string(pid)) == std::string::npos; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  const Result second = stagger("run " + path + " --out " + out.string());
+  ::kill(static_cast<pid_t>(pid), SIGKILL);
+  expect_one_line_error(second);
+  EXPECT_NE(second.err.find("output directory '" + out.string() + "' is in use by another stagger run (pid " +
+                            std::to_string(pid) + ")"),
+            std::string::npos)
+      << second.err;
+  // Once the first run is gone (killed: the kernel drops its lock), the directory is free.
+  for (int i = 0; i < 500 && ::kill(static_cast<pid_t>(pid), 0) == 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  text = tiny_scene;
+  const Result third = stagger("run " + write("long.toml", text) + " --out " + out.string());
+  EXPECT_EQ(third.status, 0) << third.err;
 }
 
 TEST_F(Cli, RunRejectsBadThreadCounts) {

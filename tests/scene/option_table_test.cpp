@@ -108,7 +108,10 @@ template <class Options>
 double other_value(const stagger::Option<Options>& option, double current) {
   if (option.type == stagger::OptionType::flag) return current != 0 ? 0.0 : 1.0;
   if (option.type == stagger::OptionType::choice) return current == 0 ? 1.0 : 0.0;
-  for (double candidate : {current + 1, current * 0.5, current - 1, 0.5 * (option.range.low + option.range.high)}) {
+  // dt_min: a floor above the first CFL step is refused at load (the step would collapse),
+  // so try a small floor first.
+  const double small = std::string(option.key) == "dt_min" ? 1e-9 : current + 1;
+  for (double candidate : {small, current + 1, current * 0.5, current - 1, 0.5 * (option.range.low + option.range.high)}) {
     if (option.type == stagger::OptionType::integer) candidate = std::round(candidate);
     if (candidate != current && option.check(candidate).empty()) return candidate;
   }

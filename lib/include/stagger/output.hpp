@@ -3,7 +3,9 @@
 /// Output writers: VTK .vtu dumps and the .pvd time series, history.csv and summary.json.
 /// Every file is written to a temporary name in the same directory and renamed, so that a
 /// crash never leaves a half-written file.
+#include <functional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -16,8 +18,15 @@ class Simulation;
 /// Named scalar results (error norms, diagnostics), in insertion order.
 using NamedValues = std::vector<std::pair<std::string, double>>;
 
-/// Writes `text` to `path` atomically (temporary file + rename). Throws stagger::Error.
+/// Writes `text` to `path` atomically (temporary file, fdatasync, rename). Every write,
+/// flush, close and rename is checked: a full disk throws stagger::Error naming `path`.
 void write_file_atomically(const std::string& path, const std::string& text);
+/// The same for a file written by someone else's code: `write(temporary)` writes it under a
+/// temporary name in the same directory; if `expected_tail` is given, the file must end
+/// with it (a writer that does not report its write errors leaves a truncated file on a full
+/// disk); then it is flushed and renamed onto `path`. The temporary is removed on failure.
+void write_file_atomically(const std::string& path, const std::function<void(const std::string&)>& write,
+                           std::string_view expected_tail = {});
 
 /// Writes the current state as an unstructured grid (appended raw, zlib): points in double
 /// precision; zone fields density, pressure, specific_internal_energy,

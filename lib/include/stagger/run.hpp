@@ -24,6 +24,9 @@ struct RunControl {
   long checkpoint_every_cycles = 500;  ///< 0 = never (by cycles)
   double checkpoint_every_seconds = 60;  ///< wall-clock; 0 = never (by time)
   bool checkpoints = true;
+  /// Refuse a run whose schedule gives more dumps than this (a typo such as dump_interval
+  /// = 1e-9 would otherwise write files until the disk is full). See estimated_dumps().
+  long max_dumps = 10000;
   bool progress = false;               ///< a progress line on stderr
   Reference reference;                 ///< errors/diagnostics for summary.json (may be empty)
   /// Checks the ranges of output_option_table() (option_table.hpp); throws stagger::Error
@@ -38,9 +41,16 @@ struct RunResult {
   RunSummary summary;   ///< what summary.json holds beyond the state (timings, errors)
 };
 
+/// The number of dumps the schedule gives up to `t_end`: the first and the last, and one
+/// per dump_interval between (0 if dumps are off). Never overflows (saturates at LONG_MAX).
+long estimated_dumps(const RunControl& control, double t_end);
+
 /// Runs to t_end. On a stagger::Error mid-run it writes a final dump and the summary with
 /// the error as status, and returns completed = false (it does not throw for run failures;
-/// it throws for unusable output directories).
+/// it throws for unusable output directories, a directory locked by another run, and more
+/// than control.max_dumps dumps). The output directory is locked for the run (flock on
+/// `.stagger.lock`); the previous run's `<name>.pvd` and `<name>_NNNNNN.vtu` there are
+/// removed before the first dump (docs/output.md).
 RunResult run(Simulation& simulation, const RunControl& control);
 
 /// Resumes from a checkpoint written by run() and continues to t_end: `simulation` must be

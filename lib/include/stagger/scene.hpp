@@ -48,6 +48,10 @@ struct Scene {
   RunControl control;      ///< output settings and the reference solution, for run()
   std::vector<std::string> notes;  ///< repairs made on import (e.g. reoriented zones)
   VerificationSetup verification;  ///< the [verification] reference and its parameters
+  /// Set-ups that make no sense but may be meant (untagged boundary edges, a run of a few
+  /// cycles, unit slips in strength or velocity): one line each, "FILE:LINE: key 'k': ...".
+  /// `stagger check` and `stagger run` print them; docs/scenes.md "Warnings".
+  std::vector<std::string> warnings;
 };
 
 /// Reads, meshes and validates a scene. `overrides` are ("section.key", "value") pairs

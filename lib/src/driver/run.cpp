@@ -2,13 +2,16 @@
 // It owns only the loop and the output schedule; the physics is Simulation::step().
 #include "stagger/run.hpp"
 
+#include <fcntl.h>
 #include <omp.h>
 #include <signal.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <charconv>
 #include <chrono>
 #include <cerrno>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -56,14 +59,98 @@ struct DriverState {
   double wall_seconds = 0;  ///< whole run, accumulated over restarts (before this invocation)
 };
 
+// The name becomes file names in the output directory: no path separators, no "..", no
+// control characters (the scene reader restricts it further, docs/scenes.md).
+const std::string& checked_name(const std::string& name) {
+  bool ok = !name.empty() && name.size() <= 255 && name.front() != '.' && name.find("..") == std::string::npos;
+  for (char c : name) ok = ok && c != '/' && c != '\\' && static_cast<unsigned char>(c) >= 0x20 && c != 0x7f;
+  if (!ok) throw Error("output name '" + name + "' is not usable as a file name (use letters, digits, '_', '-', '.')");
+  return name;
+}
+
+constexpr const char* lock_file_name = ".stagger.lock";
+
 class Driver {
 public:
   Driver(Simulation& simulation, const RunControl& control)
       : simulation_(simulation),
         control_(control),
         directory_(control.output_directory.empty() ? fs::path(".") : fs::path(control.output_directory)),
-        pvd_((directory_ / (control.name + ".pvd")).string()),
+        pvd_((directory_ / (checked_name(control.name) + ".pvd")).string()),
         history_((directory_ / "history.csv").string()) {}
+  ~Driver() {
+    if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the flock
+  }
+  Driver(const Driver&) = delete;
+  Driver& operator=(const Driver&) = delete;
+
+  /// Refuses a schedule with more than max_dumps dumps (before anything is written).
+  void check_dump_count() const {
+    const double t_end = simulation_.problem().t_end;
+    const long count = estimated_dumps(control_, t_end);
+    if (count > control_.max_dumps) {
+      throw Error("output.dump_interval = " + format_number(control_.dump_interval) + " with time.end = " +
+                  format_number(t_end) + " gives " + std::to_string(count) + " dumps, more than output.max_dumps = " +
+                  std::to_string(control_.max_dumps) + "; raise output.dump_interval (or output.max_dumps)");
+    }
+  }
+
+  /// One run per output directory: an exclusive flock on `.stagger.lock`, held until the
+  /// driver ends (the kernel releases it if the process dies, so a killed run leaves no
+  /// stale lock). The file holds the owner's pid for the message of a second run.
+  void lock_directory() {
+    const fs::path path = directory_ / lock_file_name;
+    lock_fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (lock_fd_ < 0) {
+      throw Error("cannot lock output directory '" + directory_.string() + "': " + std::strerror(errno) +
+                  "; choose a writable output directory (--out)");
+    }
+    if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+      const int code = errno;
+      std::string owner;
+      char buffer[32] = {};
+      if (::pread(lock_fd_, buffer, sizeof buffer - 1, 0) > 0) owner = buffer;
+      while (!owner.empty() && (owner.back() == '\n' || owner.back() == ' ')) owner.pop_back();
+      ::close(lock_fd_);
+      lock_fd_ = -1;
+      if (code == EWOULDBLOCK) {
+        throw Error("output directory '" + directory_.string() + "' is in use by another stagger run" +
+                    (owner.empty() ? std::string() : " (pid " + owner + ")") +
+                    "; wait for it to finish or choose another output directory (--out)");
+      }
+      throw Error("cannot lock output directory '" + directory_.string() + "': " + std::strerror(code));
+    }
+    const std::string pid = std::to_string(::getpid()) + "\n";
+    if (::ftruncate(lock_fd_, 0) != 0 || ::pwrite(lock_fd_, pid.data(), pid.size(), 0) != static_cast<ssize_t>(pid.size())) {
+      throw Error("cannot write the lock file '" + path.string() + "': " + std::strerror(errno) +
+                  "; free space or choose another output directory");
+    }
+  }
+
+  /// A fresh run replaces the previous run's series of the same name: its .pvd and the
+  /// numbered .vtu files (`<name>_` + digits + `.vtu`), so no stale dump lies beside the
+  /// new .pvd. Other names' files and everything else are left alone.
+  void remove_previous_dumps() const {
+    const std::string prefix = control_.name + "_";
+    std::error_code ec;
+    std::vector<fs::path> doomed;
+    for (const auto& entry : fs::directory_iterator(directory_, ec)) {
+      const std::string file = entry.path().filename().string();
+      bool ours = file == control_.name + ".pvd";
+      if (!ours && file.starts_with(prefix) && file.ends_with(".vtu")) {
+        const std::string digits = file.substr(prefix.size(), file.size() - prefix.size() - 4);
+        ours = digits.size() >= 6 && digits.find_first_not_of("0123456789") == std::string::npos;
+      }
+      if (ours && entry.is_regular_file(ec)) doomed.push_back(entry.path());
+    }
+    for (const auto& path : doomed) {
+      fs::remove(path, ec);
+      if (ec) {
+        throw Error("cannot remove the previous run's dump '" + path.string() + "': " + ec.message() +
+                    "; remove it by hand or choose another output directory (--out)");
+      }
+    }
+  }
 
   void prepare_directory() const {
     std::error_code ec;
@@ -331,8 +418,15 @@ private:
     std::fflush(stderr);
   }
 
+  static std::string format_number(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", value);
+    return text;
+  }
+
   Simulation& simulation_;
   const RunControl& control_;
+  int lock_fd_ = -1;
   fs::path directory_;
   PvdWriter pvd_;
   HistoryWriter history_;
@@ -342,10 +436,21 @@ private:
 
 }  // namespace
 
+long estimated_dumps(const RunControl& control, double t_end) {
+  if (!control.dumps) return 0;
+  if (!(control.dump_interval > 0) || !(t_end > 0)) return 2;
+  const double between = std::floor(t_end / control.dump_interval);
+  if (!(between < static_cast<double>(LONG_MAX) - 2)) return LONG_MAX;  // also NaN
+  return static_cast<long>(between) + 2;
+}
+
 RunResult run(Simulation& simulation, const RunControl& control) {
   control.validate();
   Driver driver(simulation, control);
+  driver.check_dump_count();
   driver.prepare_directory();
+  driver.lock_directory();
+  driver.remove_previous_dumps();
   driver.start_fresh();
   return driver.loop();
 }
@@ -353,8 +458,10 @@ RunResult run(Simulation& simulation, const RunControl& control) {
 RunResult resume(Simulation& simulation, const RunControl& control, const std::string& checkpoint) {
   control.validate();
   Driver driver(simulation, control);
+  driver.check_dump_count();
   driver.load_checkpoint(checkpoint);
   driver.prepare_directory();
+  driver.lock_directory();
   return driver.loop();
 }
 

@@ -312,6 +312,8 @@ const OptionTable<RunControl>& output_option_table() {
           number<&R::dump_interval>("dump_interval", at_least(0), "time",
                                     "time between .vtu dumps; 0: the first and the last only"),
           flag<&R::dumps>("dumps", "write .vtu/.pvd dumps (false: none, for benchmarks)"),
+          integer<&R::max_dumps>("max_dumps", {1, 1e8, false, false}, "dumps",
+                                 "most dumps a run may write (a tiny dump_interval would fill the disk)"),
           integer<&R::history_every>("history_every", at_least(1), "cycles", "a history.csv row every N cycles"),
           integer<&R::checkpoint_every_cycles>("checkpoint_every_cycles", at_least(0), "cycles",
                                                "a checkpoint every N cycles; 0: never by cycles"),

@@ -1,7 +1,11 @@
 // Every output file is written to a temporary name in its own directory and renamed, so a
-// crash or kill -9 at any moment leaves either the old complete file or the new one.
+// crash or kill -9 at any moment leaves either the old complete file or the new one. Every
+// system call's result is checked: a full disk (ENOSPC, often reported only by fdatasync or
+// close) is an error naming the file, never a "completed" run with truncated output.
 #include "io/atomic_file.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -21,6 +25,34 @@ namespace {
 fs::path directory_of(const fs::path& path) {
   const fs::path parent = path.parent_path();
   return parent.empty() ? fs::path(".") : parent;
+}
+
+std::string system_error(int code) {
+  std::string text = std::strerror(code);
+  if (code == ENOSPC || code == EDQUOT || code == EFBIG) text += "; the disk (or quota, or file size limit) is full";
+  return text;
+}
+
+[[noreturn]] void fail_and_remove(const fs::path& temporary, const std::string& target, const std::string& what,
+                                  int code) {
+  std::error_code ignored;
+  fs::remove(temporary, ignored);
+  throw Error("cannot write '" + target + "': " + what + " failed (" + system_error(code) +
+              "); free space or choose another output directory");
+}
+
+// Writes all of `text` to `fd`, retrying short writes and EINTR; returns 0 or an errno.
+int write_all(int fd, const char* data, std::size_t size) {
+  while (size > 0) {
+    const ssize_t written = ::write(fd, data, size);
+    if (written < 0) {
+      if (errno == EINTR) continue;
+      return errno;
+    }
+    data += written;
+    size -= static_cast<std::size_t>(written);
+  }
+  return 0;
 }
 }  // namespace
 
@@ -43,9 +75,24 @@ void require_directory_of(const fs::path& path) {
     throw Error("cannot write '" + path.string() + "': '" + directory.string() +
                 "' is not a directory; choose another output directory");
   }
+  // rename() would replace a device node or a symbolic link itself: write only regular files.
+  const auto target = fs::symlink_status(path, ec);
+  if (fs::exists(target) && !fs::is_regular_file(target)) {
+    throw Error("cannot write '" + path.string() + "': it exists and is not a regular file (" +
+                (fs::is_directory(target) ? "a directory" : fs::is_symlink(target) ? "a symbolic link" : "a device or special file") +
+                "); choose another file name");
+  }
 }
 
 void replace_file(const fs::path& from, const fs::path& to) {
+  const int fd = ::open(from.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) fail_and_remove(from, to.string(), "reopening the temporary file", errno);
+  if (::fdatasync(fd) != 0) {
+    const int code = errno;
+    ::close(fd);
+    fail_and_remove(from, to.string(), "flushing to disk (fdatasync)", code);
+  }
+  if (::close(fd) != 0) fail_and_remove(from, to.string(), "closing", errno);
   std::error_code ec;
   fs::rename(from, to, ec);
   if (ec) {
@@ -57,6 +104,10 @@ void replace_file(const fs::path& from, const fs::path& to) {
 }
 
 std::string read_file(const std::string& path) {
+  // A device or a FIFO (e.g. /dev/zero) would never end or never come: regular files only.
+  std::error_code ec;
+  if (fs::exists(path, ec) && !fs::is_regular_file(path, ec))
+    throw Error("cannot read '" + path + "': not a regular file; check the path");
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     throw Error("cannot read '" + path + "': " + std::strerror(errno) + "; check the path");
@@ -69,27 +120,68 @@ std::string read_file(const std::string& path) {
 
 }  // namespace io_detail
 
+namespace {
+void write_through_temporary(const std::string& path, const std::function<void(const std::string&)>& write,
+                             std::string_view expected_tail, bool keep_extension);
+}  // namespace
+
 void write_file_atomically(const std::string& path, const std::string& text) {
-  namespace fs = std::filesystem;
-  const fs::path target(path);
-  io_detail::require_directory_of(target);
-  const fs::path temporary = io_detail::temporary_path(target);
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) {
+  write_through_temporary(path, [&](const std::string& temporary) {
+    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) {
       throw Error("cannot write '" + path + "': " + std::strerror(errno) +
                   "; check that the output directory is writable");
     }
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
-    out.flush();
-    out.close();
-    if (!out) {
+    if (const int code = io_detail::write_all(fd, text.data(), text.size()); code != 0) {
+      ::close(fd);
+      io_detail::fail_and_remove(temporary, path, "writing", code);
+    }
+    if (::close(fd) != 0) io_detail::fail_and_remove(temporary, path, "closing", errno);
+  }, {}, false);
+}
+
+void write_file_atomically(const std::string& path, const std::function<void(const std::string&)>& write,
+                           std::string_view expected_tail) {
+  // The temporary keeps the extension: some writers (gmsh) choose the format by it.
+  write_through_temporary(path, write, expected_tail, true);
+}
+
+namespace {
+void write_through_temporary(const std::string& path, const std::function<void(const std::string&)>& write,
+                             std::string_view expected_tail, bool keep_extension) {
+  namespace fs = std::filesystem;
+  const fs::path target(path);
+  io_detail::require_directory_of(target);
+  fs::path temporary = io_detail::temporary_path(target);
+  if (keep_extension) temporary += target.extension();
+  try {
+    write(temporary.string());
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw;
+  }
+  if (!expected_tail.empty()) {
+    // A writer that does not check its own writes (e.g. a library's fprintf) leaves a
+    // truncated file on a full disk: its last bytes show whether it is complete.
+    std::ifstream in(temporary, std::ios::binary | std::ios::ate);
+    const std::streamoff size = in ? static_cast<std::streamoff>(in.tellg()) : -1;
+    std::string tail(expected_tail.size(), '\0');
+    bool complete = size >= static_cast<std::streamoff>(tail.size());
+    if (complete) {
+      in.seekg(size - static_cast<std::streamoff>(tail.size()));
+      complete = static_cast<bool>(in.read(tail.data(), static_cast<std::streamsize>(tail.size()))) &&
+                 tail == expected_tail;
+    }
+    if (!complete) {
       std::error_code ignored;
       fs::remove(temporary, ignored);
-      throw Error("cannot write '" + path + "': write failed (disk full?)");
+      throw Error("cannot write '" + path + "': the file came out incomplete (" + std::to_string(size < 0 ? 0 : size) +
+                  " bytes; is the disk full?); free space or choose another output directory");
     }
   }
   io_detail::replace_file(temporary, target);
 }
+}  // namespace
 
 }  // namespace stagger

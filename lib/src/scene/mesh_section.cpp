@@ -25,6 +25,13 @@ std::array<double, 2> zone_centre(const Mesh& mesh, Index zone) {
 
 namespace {
 
+// Stated limits (docs/scenes.md): a count of the generators, the zones of one generated mesh
+// (4 corners a zone must fit the 32-bit Index: 5.3e8; 1e8 zones already need ~100 GB), and
+// the refinement factor.
+constexpr long kMaxCount = 10'000'000;
+constexpr long kMaxZones = 100'000'000;
+constexpr double kMaxRefine = 1000;
+
 std::string join(const std::vector<std::string>& names) {
   std::string list;
   for (const auto& name : names) list += (list.empty() ? "" : ", ") + name;
@@ -85,16 +92,33 @@ Mesh read_mesh_section(Section& section, const std::string& scene_file, std::vec
                  "write file = \"shape.geo\" or generator = \"rectangle\"");
   const double refine = section.number("refine", 1.0);
   if (!(refine > 0)) section.fail("refine", "must be > 0, got " + show(refine));
+  if (refine > kMaxRefine) section.fail("refine", "must be at most " + show(kMaxRefine) + ", got " + show(refine));
   const std::vector<std::string> refined = section.has("refined") ? section.strings("refined")
                                                                   : std::vector<std::string>{};
   const bool quads_only = section.boolean("quads_only", false);
 
+  // The product is formed in double and checked before any conversion, so that no count
+  // wraps around (nx = 4294967297 once ran one zone wide) or reads as negative.
   auto refined_count = [&](const std::string& key, long base) {
     const bool listed = !section.has("refined") ||
                         std::find(refined.begin(), refined.end(), key) != refined.end();
-    const long value = listed ? std::lround(static_cast<double>(base) * refine) : base;
-    if (value < 1) section.fail(key, "must be >= 1 (after refinement: " + std::to_string(value) + ")");
+    const double value = listed ? std::round(static_cast<double>(base) * refine) : static_cast<double>(base);
+    if (value < 1)
+      section.fail(key, show(static_cast<double>(base)) + " refined by " + show(refine) + " gives " + show(value) +
+                            " zones; must be >= 1", "raise mesh.refine or the count");
+    if (value > static_cast<double>(kMaxCount))
+      section.fail(key, show(static_cast<double>(base)) + " refined by " + show(refine) + " gives " + show(value) +
+                            " zones, above the limit of " + std::to_string(kMaxCount),
+                   "lower mesh.refine or the count");
     return static_cast<int>(value);
+  };
+  auto check_zone_total = [&](const char* first, int a, const char* second, int b) {
+    const double total = static_cast<double>(a) * static_cast<double>(b);
+    if (total > static_cast<double>(kMaxZones))
+      section.fail(first, std::string(first) + " x " + second + " = " + std::to_string(a) + " x " + std::to_string(b) +
+                              " = " + show(total) + " zones, above the limit of " + std::to_string(kMaxZones) +
+                              " zones per mesh",
+                   "use fewer zones");
   };
   auto check_refined = [&](const std::vector<std::string>& allowed) {
     for (const auto& name : refined)
@@ -108,11 +132,7 @@ Mesh read_mesh_section(Section& section, const std::string& scene_file, std::vec
   if (has_generator) {
     const std::string generator = section.choice("generator", {"rectangle", "annulus_sector", "annulus"});
     mesh_label = generator;
-    auto positive_count = [&](const std::string& key) {
-      const long base = section.integer(key);
-      if (base < 1) section.fail(key, "must be >= 1, got " + std::to_string(base));
-      return base;
-    };
+    auto positive_count = [&](const std::string& key) { return section.integer_in(key, 1, kMaxCount); };
     auto radii = [&]() {
       const auto r = section.numbers("r", 2);
       if (!(r[0] >= 0 && r[1] > r[0])) section.fail("r", "needs 0 <= r0 < r1", "write r = [r0, r1]");
@@ -122,8 +142,12 @@ Mesh read_mesh_section(Section& section, const std::string& scene_file, std::vec
       const auto x = section.numbers("x", 2), y = section.numbers("y", 2);
       if (!(x[1] > x[0])) section.fail("x", "needs x0 < x1", "write x = [x0, x1]");
       if (!(y[1] > y[0])) section.fail("y", "needs y0 < y1", "write y = [y0, y1]");
+      // The extent and the zone widths must be finite numbers, not overflow to inf.
+      if (!std::isfinite(x[1] - x[0])) section.fail("x", "the extent x1 - x0 overflows", "use smaller coordinates");
+      if (!std::isfinite(y[1] - y[0])) section.fail("y", "the extent y1 - y0 overflows", "use smaller coordinates");
       check_refined({"nx", "ny"});
       const int nx = refined_count("nx", positive_count("nx")), ny = refined_count("ny", positive_count("ny"));
+      check_zone_total("nx", nx, "ny", ny);
       soup = meshgen::rectangle(x[0], x[1], y[0], y[1], nx, ny);
     } else if (generator == "annulus_sector") {
       const auto r = radii();
@@ -133,6 +157,7 @@ Mesh read_mesh_section(Section& section, const std::string& scene_file, std::vec
       check_refined({"n_theta", "n_r"});
       const int n_theta = refined_count("n_theta", positive_count("n_theta"));
       const int n_r = refined_count("n_r", positive_count("n_r"));
+      check_zone_total("n_theta", n_theta, "n_r", n_r);
       const double degree = std::numbers::pi / 180;
       soup = meshgen::annulus_sector(r[0], r[1], theta[0] * degree, theta[1] * degree, n_theta, n_r);
     } else {
@@ -141,6 +166,7 @@ Mesh read_mesh_section(Section& section, const std::string& scene_file, std::vec
       check_refined({"n_theta", "n_r"});
       const int n_theta = refined_count("n_theta", positive_count("n_theta"));
       const int n_r = refined_count("n_r", positive_count("n_r"));
+      check_zone_total("n_theta", n_theta, "n_r", n_r);
       soup = meshgen::annulus(r[0], r[1], n_theta, n_r);
     }
   } else {
@@ -204,7 +230,7 @@ Mesh read_mesh_section(Section& section, const std::string& scene_file, std::vec
 
   const double perturb = section.number("perturb", 0.0);
   if (!(perturb >= 0 && perturb < 0.5)) section.fail("perturb", "must be in [0, 0.5), got " + show(perturb));
-  const long seed = section.integer("seed", 1);
+  const long seed = section.integer_in("seed", 1, 0, std::numeric_limits<long>::max());
   section.finish();
 
   MeshBuildOptions build_options;

@@ -39,6 +39,8 @@ std::vector<Segment> split_path(const std::string& path, const std::string& labe
       const std::string digits = piece.substr(position + 1, close - position - 1);
       for (char c : digits)
         if (!std::isdigit(static_cast<unsigned char>(c))) fail(label, "index '" + digits + "' is not a number");
+      // No scene has a million entries in one array; the bound also keeps the number in range.
+      if (digits.size() > 6) fail(label, "index " + digits + " is out of range (at most 999999)");
       segment.indices.push_back(std::stoul(digits));
       position = close + 1;
     }
@@ -49,11 +51,22 @@ std::vector<Segment> split_path(const std::string& path, const std::string& labe
   return segments;
 }
 
+// Digits with an optional sign, point and exponent: meant as a number, not a bare word.
+bool looks_numeric(const std::string& value) {
+  std::size_t i = value.find_first_not_of("+-");
+  if (i == std::string::npos || i > 1 || !std::isdigit(static_cast<unsigned char>(value[i]))) return false;
+  return value.find_first_not_of("0123456789+-._eE", i) == std::string::npos;
+}
+
 // Parses `key = value` as a one-line document whose nodes carry the source "--set ...".
 toml::table parse_assignment(const std::string& keys, const std::string& value, const std::string& label) {
   try {
     return toml::parse(keys + " = " + value, label);
   } catch (const toml::parse_error&) {
+    // A number TOML cannot hold (an integer beyond 64 bits) is an error, not a string.
+    if (looks_numeric(value))
+      fail(label, "'" + value + "' is not a valid TOML number (out of range: integers must fit in 64 bits, floats "
+                  "in a double)");
     // Not a TOML value: take it as a literal string (e.g. --set numerics.viscosity=edge).
     if (value.find('\'') != std::string::npos || value.find('\n') != std::string::npos)
       fail(label, "'" + value + "' is not a TOML value; quote strings");

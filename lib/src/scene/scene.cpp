@@ -13,6 +13,7 @@
 #include "option_table_reader.hpp"
 #include "overrides.hpp"
 #include "scene_internal.hpp"
+#include "warnings.hpp"
 #include "stagger/error.hpp"
 
 namespace stagger {
@@ -97,11 +98,14 @@ TimeFunction to_time_function(const Section::ValueOrExpression& value) {
 }
 
 void read_scene_section(Section& root, const std::string& file, Problem& problem, RunControl& control) {
-  std::string name = std::filesystem::path(file).stem().string();
+  // The name becomes output file names: a safe set only (no path, no control characters).
+  std::string name = safe_name(std::filesystem::path(file).stem().string());
   if (auto scene = root.subtable("scene")) {
     name = scene->string("name", name);
-    if (name.empty() || name.find_first_of("/\\ ") != std::string::npos)
-      scene->fail("name", "'" + name + "' is not usable as a file name", "use letters, digits, '_' and '-'");
+    if (const std::string reason = unsafe_name_reason(name); !reason.empty())
+      scene->fail("name", "the name " + reason + "; it names the output files",
+                  "use letters, digits, '_', '-' and '.' (not first, not '..'), at most " +
+                      std::to_string(kMaxNameLength) + " characters");
     scene->string("description", "");
     scene->string("units", "");
     scene->finish();
@@ -144,9 +148,11 @@ Material read_material(Section& section) {
       if (array == nullptr) burn_section->fail("points", "expected an array of [x, y] pairs", "write points = [[0.0, 0.0]]");
       for (const toml::node& element : *array) {
         const auto* pair = element.as_array();
-        if (pair == nullptr || pair->size() != 2 || !pair->get(0)->is_number() || !pair->get(1)->is_number())
+        if (pair == nullptr || pair->size() != 2)
           burn_section->fail_at(&element, burn_section->key_path("points"), "each detonation point is [x, y]");
-        burn.points.push_back({*pair->get(0)->value<double>(), *pair->get(1)->value<double>()});
+        const std::string label = burn_section->key_path("points") + "[" + std::to_string(burn.points.size()) + "]";
+        burn.points.push_back({burn_section->number_at(*pair->get(0), label + "[0]"),
+                               burn_section->number_at(*pair->get(1), label + "[1]")});
       }
     }
     if (burn_section->has("plane")) {
@@ -413,6 +419,7 @@ Scene load_scene(const std::string& path, const std::vector<std::pair<std::strin
   } catch (const Error& failure) {
     throw Error(path + ": " + failure.what());
   }
+  review_scene(document, scene);
   return scene;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 
 #include "stagger/error.hpp"
@@ -38,6 +39,38 @@ std::string show(double value) {
   out.precision(10);
   out << value;
   return out.str();
+}
+
+namespace {
+bool safe_name_character(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+}
+}  // namespace
+
+std::string unsafe_name_reason(std::string_view name) {
+  if (name.empty()) return "is empty";
+  if (name.size() > kMaxNameLength)
+    return "is " + std::to_string(name.size()) + " characters long (at most " + std::to_string(kMaxNameLength) + ")";
+  for (std::size_t i = 0; i < name.size(); ++i)
+    if (!safe_name_character(name[i])) {
+      const auto code = static_cast<unsigned char>(name[i]);
+      std::string text = "has ";
+      if (code >= 0x80) text.append("a non-ASCII byte");
+      else if (code < 0x20 || code == 0x7f) text.append("a control character");
+      else text.append(1, '\'').append(1, name[i]).append(1, '\'');
+      return text.append(" at position ").append(std::to_string(i));
+    }
+  if (name.front() == '.') return "starts with '.'";
+  if (name.find("..") != std::string_view::npos) return "contains '..'";
+  return {};
+}
+
+std::string safe_name(std::string_view name) {
+  std::string result;
+  for (char c : name.substr(0, kMaxNameLength)) result += safe_name_character(c) ? c : '_';
+  if (!result.empty() && result.front() == '.') result.front() = '_';
+  for (std::size_t at; (at = result.find("..")) != std::string::npos;) result[at + 1] = '_';
+  return result.empty() ? "scene" : result;
 }
 
 namespace {
@@ -123,17 +156,43 @@ double Section::number(std::string_view key, double fallback) {
   return find(key) ? number(key) : fallback;
 }
 
-long Section::integer(std::string_view key) {
+namespace {
+// Integers beyond 2^53 do not survive the trip through a double (expressions, --set of a
+// float): the default limit of a plain integer key.
+constexpr long kIntegerLimit = 1L << 53;
+}  // namespace
+
+long Section::integer(std::string_view key) { return integer_in(key, -kIntegerLimit, kIntegerLimit); }
+
+long Section::integer(std::string_view key, long fallback) { return find(key) ? integer(key) : fallback; }
+
+long Section::integer_in(std::string_view key, long min, long max) {
   const toml::node& node = require(key);
-  if (const auto* integer_node = node.as_integer()) return static_cast<long>(integer_node->get());
+  // Built by appending: GCC 12 at -O3 warns falsely (-Wrestrict) on "[" + std::string.
+  std::string range(1, '[');
+  range.append(std::to_string(min)).append(", ").append(std::to_string(max)).append("]");
+  if (const auto* integer_node = node.as_integer()) {
+    const std::int64_t value = integer_node->get();
+    if (value < min || value > max) fail(key, "must be in " + range + ", got " + std::to_string(value));
+    return static_cast<long>(value);
+  }
   if (const auto* floating = node.as_floating_point()) {
     const double value = floating->get();
-    if (std::isfinite(value) && value == std::round(value) && std::abs(value) < 1e15) return static_cast<long>(value);
+    if (!std::isfinite(value)) fail(key, "must be a finite integer in " + range + ", got " + show(value));
+    if (value == std::round(value)) {
+      // Compare as doubles first: casting an out-of-range double to long is undefined.
+      if (value < static_cast<double>(min) || value > static_cast<double>(max))
+        fail(key, "must be in " + range + ", got " + show(value));
+      return static_cast<long>(value);
+    }
+    fail(key, "expected an integer, got " + show(value), "write e.g. " + std::string(key) + " = 10");
   }
   fail(key, "expected an integer, got " + type_name(node), "write e.g. " + std::string(key) + " = 10");
 }
 
-long Section::integer(std::string_view key, long fallback) { return find(key) ? integer(key) : fallback; }
+long Section::integer_in(std::string_view key, long fallback, long min, long max) {
+  return find(key) ? integer_in(key, min, max) : fallback;
+}
 
 bool Section::boolean(std::string_view key, bool fallback) {
   const toml::node* node = find(key);
@@ -180,6 +239,13 @@ std::vector<double> Section::numbers(std::string_view key, std::size_t count) {
     values.push_back(*element.value<double>());
   }
   return values;
+}
+
+double Section::number_at(const toml::node& node, const std::string& key_label) const {
+  if (!node.is_number()) fail_at(&node, key_label, "expected a number, got " + type_name(node));
+  const double value = *node.value<double>();
+  if (!std::isfinite(value)) fail_at(&node, key_label, "must be finite, got " + show(value));
+  return value;
 }
 
 std::vector<std::string> Section::strings(std::string_view key) {

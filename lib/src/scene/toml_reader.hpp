@@ -27,6 +27,14 @@ std::string type_name(const toml::node& node);
 // fixed 6 decimals, which prints 1e-9 as 0.000000).
 std::string show(double value);
 
+/// Why `name` is not a safe output file stem ("" if it is): letters, digits, '_', '-', '.';
+/// no leading '.', no "..", at most kMaxNameLength characters.
+constexpr std::size_t kMaxNameLength = 64;
+std::string unsafe_name_reason(std::string_view name);
+/// `name` with every character outside the safe set replaced by '_' (and a leading '.'
+/// too), truncated to kMaxNameLength; "scene" if nothing is left.
+std::string safe_name(std::string_view name);
+
 class Section {
 public:
   Section(std::string file, const toml::table& table, std::string path);
@@ -41,8 +49,13 @@ public:
 
   double number(std::string_view key);                  // required
   double number(std::string_view key, double fallback);
+  /// An integer (a whole float such as 1e3 is accepted). Every integer is range-checked:
+  /// the plain forms allow [-2^53, 2^53] (what a double holds exactly), the *_in forms
+  /// [min, max]; an error names the key, the limits and the value.
   long integer(std::string_view key);
   long integer(std::string_view key, long fallback);
+  long integer_in(std::string_view key, long min, long max);
+  long integer_in(std::string_view key, long fallback, long min, long max);
   bool boolean(std::string_view key, bool fallback);
   std::string string(std::string_view key);
   std::string string(std::string_view key, const std::string& fallback);
@@ -51,6 +64,8 @@ public:
                      std::optional<std::string> fallback = std::nullopt);
   /// An array of exactly `count` numbers (count 0: any length).
   std::vector<double> numbers(std::string_view key, std::size_t count);
+  /// A finite number held by `node` (an array element); errors name `key_label`.
+  double number_at(const toml::node& node, const std::string& key_label) const;
   std::vector<std::string> strings(std::string_view key);
 
   /// A number, or a string expression of `variables` checked to parse.

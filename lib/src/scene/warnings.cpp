@@ -1,0 +1,332 @@
+// Whole-scene review: the first time step and the dump count against the settings, and
+// the warnings for set-ups that make no sense (docs/scenes.md "Warnings").
+#include "warnings.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <cstdint>
+#include <sstream>
+
+#include "scene_internal.hpp"
+#include "stagger/error.hpp"
+
+namespace stagger::scene_detail {
+
+namespace {
+
+std::string point_text(double x, double y) {
+  std::ostringstream out;
+  out.precision(6);
+  out << "(" << x << ", " << y << ")";
+  return out.str();
+}
+
+// "FILE:LINE: key 'path'" for a key of the document (the line of its table if absent).
+class Locator {
+public:
+  Locator(const toml::table& document, std::string file) : document_(document), file_(std::move(file)) {}
+  std::string at(const std::string& path) const {
+    const toml::node* node = document_.at_path(path).node();
+    const toml::node* fallback = nullptr;
+    for (std::string parent = path; !node && !fallback;) {
+      const auto dot = parent.find_last_of(".[");
+      if (dot == std::string::npos) break;
+      parent.resize(dot);
+      fallback = document_.at_path(parent).node();
+    }
+    return where(file_, node, fallback) + ": key '" + path + "'";
+  }
+  bool has(const std::string& path) const { return document_.at_path(path).node() != nullptr; }
+
+private:
+  const toml::table& document_;
+  std::string file_;
+};
+
+// The state at t = 0 of one zone, as the set-up will compute it (docs/algorithm.md §12).
+struct ZoneState {
+  double rho = 0, c = 0, speed = 0, length = 0;  // c: with the elastic part (as the time step)
+  double bulk = 0;                               // rho c^2 of the EOS alone
+  double centre_x = 0, centre_y = 0;
+  int region = -1, material = -1;  // indices into problem.regions / problem.materials
+};
+
+double longest_chord(const Mesh& mesh, Index z) {
+  double longest2 = 0;
+  const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
+  for (Index a = begin; a < end; ++a)
+    for (Index b = a + 1; b < end; ++b) {
+      const double dx = mesh.x[mesh.corner_point[b]] - mesh.x[mesh.corner_point[a]];
+      const double dy = mesh.y[mesh.corner_point[b]] - mesh.y[mesh.corner_point[a]];
+      longest2 = std::max(longest2, dx * dx + dy * dy);
+    }
+  return std::sqrt(longest2);
+}
+
+std::vector<ZoneState> initial_states(const Problem& problem) {
+  const Mesh& mesh = problem.mesh;
+  std::vector<int> setup_of_region(mesh.num_regions(), -1), material_of_setup(problem.regions.size(), -1);
+  for (std::size_t i = 0; i < problem.regions.size(); ++i) {
+    const int r = mesh.region_index(problem.regions[i].region);
+    if (r >= 0) setup_of_region[r] = static_cast<int>(i);
+    for (std::size_t m = 0; m < problem.materials.size(); ++m)
+      if (problem.materials[m].name == problem.regions[i].material) material_of_setup[i] = static_cast<int>(m);
+  }
+  std::vector<ZoneState> states(mesh.num_zones());
+  std::vector<double> point_speed(mesh.num_points(), std::numeric_limits<double>::quiet_NaN());
+  for (Index z = 0; z < mesh.num_zones(); ++z) {
+    ZoneState& s = states[z];
+    s.region = setup_of_region[mesh.zone_region[z]];
+    if (s.region < 0 || material_of_setup[s.region] < 0) continue;
+    s.material = material_of_setup[s.region];
+    const RegionSetup& setup = problem.regions[s.region];
+    const Material& material = problem.materials[s.material];
+    const auto centre = zone_centre(mesh, z);
+    s.centre_x = centre[0];
+    s.centre_y = centre[1];
+    s.rho = setup.density(centre[0], centre[1]);
+    double e = 0;
+    try {
+      e = setup.specific_internal_energy ? setup.specific_internal_energy(centre[0], centre[1])
+                                         : eos_energy_from_pressure(material.eos, s.rho, setup.pressure(centre[0], centre[1]));
+      const double c2 = std::max(eos_sound_speed_squared(material.eos, s.rho, e), 0.0);
+      s.bulk = s.rho * c2;
+      const double elastic = material.strength ? (4.0 / 3.0) * material.strength->shear_modulus / s.rho : 0.0;
+      s.c = std::sqrt(c2 + elastic);
+    } catch (const Error&) {
+      s.c = 0;  // the reader has checked the EOS domain; nothing to estimate here
+    }
+    const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
+    for (Index k = begin; k < end; ++k) {
+      // Each point once, with the first zone's region that reaches it (as the set-up does
+      // for points shared by regions, up to the order): half the expression evaluations.
+      const Index p = mesh.corner_point[k];
+      if (std::isnan(point_speed[p])) {
+        const double vx = setup.velocity_x ? setup.velocity_x(mesh.x[p], mesh.y[p]) : 0.0;
+        const double vy = setup.velocity_y ? setup.velocity_y(mesh.x[p], mesh.y[p]) : 0.0;
+        point_speed[p] = std::hypot(vx, vy);
+      }
+      s.speed = std::max(s.speed, point_speed[p]);
+    }
+    const double chord = longest_chord(mesh, z);
+    s.length = chord > 0 ? zone_area(mesh, z) / chord : 0;  // the CFL length (docs/algorithm.md §9)
+  }
+  return states;
+}
+
+// A speed the drivers of the problem impose from outside the initial state (a cold gas at
+// rest has no sound speed to set a time step): boundary velocities, sqrt(p / rho) of applied
+// pressures, detonation speeds, and sqrt(2 E / m) of deposits into the zones around their
+// point. Added to every zone's signal speed, it keeps the cycle estimate an upper bound.
+double driver_speed(const Problem& problem, const std::vector<ZoneState>& states) {
+  const Mesh& mesh = problem.mesh;
+  double rho_min = std::numeric_limits<double>::infinity();
+  for (const ZoneState& s : states)
+    if (s.rho > 0) rho_min = std::min(rho_min, s.rho);
+  double speed = 0;
+  for (const auto& bc : problem.boundaries)
+    for (int i = 0; i <= 20; ++i) {
+      const double t = problem.t_end * i / 20.0;
+      if (bc.kind == BoundaryKind::velocity) speed = std::max(speed, std::hypot(bc.velocity_x(t), bc.velocity_y(t)));
+      if (bc.kind == BoundaryKind::pressure && std::isfinite(rho_min))
+        speed = std::max(speed, std::sqrt(std::abs(bc.pressure(t)) / rho_min));
+    }
+  for (const auto& material : problem.materials)
+    if (material.burn) speed = std::max(speed, material.burn->detonation_speed);
+  for (const auto& deposit : problem.deposits) {
+    Index nearest = 0;
+    double best = std::numeric_limits<double>::infinity();
+    for (Index p = 0; p < mesh.num_points(); ++p) {
+      const double d = std::hypot(mesh.x[p] - deposit.x, mesh.y[p] - deposit.y);
+      if (d < best) best = d, nearest = p;
+    }
+    double mass = 0;
+    for (Index c = mesh.point_corner_begin[nearest]; c < mesh.point_corner_begin[nearest + 1]; ++c) {
+      const Index z = mesh.corner_zone[mesh.point_corners[c]];
+      mass += states[z].rho * zone_area(mesh, z);
+    }
+    if (mass > 0) speed = std::max(speed, std::sqrt(2 * deposit.energy / mass));
+  }
+  return std::isfinite(speed) ? speed : 0.0;
+}
+
+// Boundary edges (used by one zone only) that no tag covers.
+struct Untagged {
+  std::size_t count = 0;
+  double x0 = 0, x1 = 0, y0 = 0, y1 = 0;  // bounding box of their midpoints
+  std::vector<std::array<double, 2>> examples;
+};
+
+Untagged untagged_boundary_edges(const Mesh& mesh) {
+  // Every zone side as a sorted key (a, b) with a < b; a side in one zone only is on the
+  // boundary. Sorting a flat array: 10^6 zones take a fraction of a second.
+  auto key = [](Index a, Index b) {
+    return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint32_t>(std::max(a, b));
+  };
+  std::vector<std::uint64_t> sides;
+  sides.reserve(mesh.corner_point.size());
+  for (Index z = 0; z < mesh.num_zones(); ++z) {
+    const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
+    for (Index c = begin; c < end; ++c) sides.push_back(key(mesh.corner_point[c], mesh.corner_point[c + 1 < end ? c + 1 : begin]));
+  }
+  std::sort(sides.begin(), sides.end());
+  std::vector<std::uint64_t> tagged;
+  for (const auto& tag : mesh.tags)
+    for (const auto& edge : tag.edges) tagged.push_back(key(edge[0], edge[1]));
+  std::sort(tagged.begin(), tagged.end());
+  std::vector<std::pair<Index, Index>> boundary;
+  for (std::size_t i = 0; i < sides.size();) {
+    std::size_t j = i;
+    while (j < sides.size() && sides[j] == sides[i]) ++j;
+    if (j - i == 1 && !std::binary_search(tagged.begin(), tagged.end(), sides[i]))
+      boundary.emplace_back(static_cast<Index>(sides[i] >> 32), static_cast<Index>(sides[i] & 0xffffffffu));
+    i = j;
+  }
+  Untagged result;
+  for (const auto& edge : boundary) {
+    const double mx = 0.5 * (mesh.x[edge.first] + mesh.x[edge.second]);
+    const double my = 0.5 * (mesh.y[edge.first] + mesh.y[edge.second]);
+    if (result.count == 0) result.x0 = result.x1 = mx, result.y0 = result.y1 = my;
+    result.x0 = std::min(result.x0, mx), result.x1 = std::max(result.x1, mx);
+    result.y0 = std::min(result.y0, my), result.y1 = std::max(result.y1, my);
+    if (result.examples.size() < 3) result.examples.push_back({mx, my});
+    ++result.count;
+  }
+  return result;
+}
+
+}  // namespace
+
+void review_scene(const toml::table& document, Scene& scene, const WarningThresholds& limits) {
+  const Problem& problem = scene.problem;
+  const RunControl& control = scene.control;
+  const HydroOptions& options = problem.options;
+  const Locator key(document, scene.file);
+  auto warn = [&](const std::string& path, const std::string& what) { scene.warnings.push_back(key.at(path) + ": " + what); };
+
+  // The first time step, estimated as the set-up will take it: cfl * L / c over the zones
+  // (no artificial viscosity yet, so the estimate is an upper bound), then dt_init, dt_max.
+  const std::vector<ZoneState> states = initial_states(problem);
+  for (const ZoneState& s : states)
+    if (s.material >= 0 && !std::isfinite(s.c))
+      throw Error(key.at("material[" + std::to_string(s.material) + "]") + ": the initial state at " +
+                  point_text(s.centre_x, s.centre_y) + " (region '" + problem.regions[s.region].region +
+                  "', density " + show(s.rho) + ") has a non-finite sound speed; check the EOS constants and the "
+                  "initial state");
+  const double drive = driver_speed(problem, states);
+  double cfl_length_over_c = std::numeric_limits<double>::infinity();  // min L / c
+  double length_over_signal = std::numeric_limits<double>::infinity();  // min L / (c + |v| + drive)
+  for (const ZoneState& s : states) {
+    if (s.material < 0 || !(s.length > 0)) continue;
+    if (s.c > 0) cfl_length_over_c = std::min(cfl_length_over_c, s.length / s.c);
+    if (s.c + s.speed + drive > 0) length_over_signal = std::min(length_over_signal, s.length / (s.c + s.speed + drive));
+  }
+  const double t_end = problem.t_end;
+  const double dt_min = options.dt_min > 0 ? options.dt_min : 1e-8 * t_end;
+  const std::string dt_min_text =
+      options.dt_min > 0 ? "numerics.dt_min = " + show(dt_min) : "dt_min = 1e-8 time.end = " + show(dt_min);
+  if (options.dt_max > 0 && options.dt_max < dt_min)
+    throw Error(key.at("numerics.dt_max") + ": " + show(options.dt_max) + " is below " + dt_min_text +
+                ": the first step would collapse; raise numerics.dt_max (or lower numerics.dt_min)");
+  if (options.dt_init > 0 && options.dt_init < dt_min)
+    throw Error(key.at("numerics.dt_init") + ": " + show(options.dt_init) + " is below " + dt_min_text +
+                ": the first step would collapse; raise numerics.dt_init (or lower numerics.dt_min)");
+  if (std::isfinite(cfl_length_over_c)) {
+    const double dt_cfl = options.cfl * cfl_length_over_c;
+    if (dt_cfl < dt_min) {
+      const std::string estimate = "the CFL time step at t = 0 (about " + show(dt_cfl) + ")";
+      if (options.dt_min > 0)
+        throw Error(key.at("numerics.dt_min") + ": " + show(dt_min) + " is above " + estimate +
+                    ": the first step would collapse; lower numerics.dt_min");
+      if (HydroOptions{}.cfl * cfl_length_over_c >= dt_min)
+        throw Error(key.at("numerics.cfl") + ": " + show(options.cfl) + " puts " + estimate + " below " +
+                    dt_min_text + ": the first step would collapse; use a cfl near the default " +
+                    show(HydroOptions{}.cfl));
+      throw Error(key.at("time.end") + ": " + show(t_end) + " is " +
+                  (std::isfinite(t_end / dt_cfl) ? show(t_end / dt_cfl) : std::string("over 1e300")) + " times " + estimate +
+                  ", and the step may not fall below 1e-8 time.end: the run would stop at once; check the units of "
+                  "time.end");
+    }
+  }
+
+  // Dumps: refused above output.max_dumps (a tiny interval would fill the disk).
+  const long dumps = estimated_dumps(control, problem.t_end);
+  if (dumps > control.max_dumps)
+    throw Error(key.at("output.dump_interval") + ": " + show(control.dump_interval) + " with time.end = " +
+                show(problem.t_end) + " gives " + show(std::floor(problem.t_end / control.dump_interval) + 2) +
+                " dumps, more than output.max_dumps = " + std::to_string(control.max_dumps) +
+                "; raise output.dump_interval (or output.max_dumps if you mean it)");
+
+  // Warnings from here on.
+  // Few cycles: from the smallest plausible step (signal speed c + |v| + drivers), so the
+  // count is an upper bound; many cycles: from the largest (c alone), a lower bound.
+  auto capped = [&](double dt) { return options.dt_max > 0 ? std::min(dt, options.dt_max) : dt; };
+  if (std::isfinite(length_over_signal)) {
+    const double dt = capped(options.cfl * length_over_signal);
+    const double cycles = t_end / dt;
+    if (cycles < limits.min_cycles)
+      warn("time.end", show(t_end) + " is about " + show(std::ceil(cycles)) + " time step(s) of ~" + show(dt) +
+                           " (CFL on the state at t = 0): the run will last fewer than " + show(limits.min_cycles) +
+                           " cycles; check the units of time.end");
+  }
+  if (std::isfinite(cfl_length_over_c) || options.dt_max > 0) {
+    const double dt = capped(options.cfl * cfl_length_over_c);
+    const double cycles = t_end / dt;
+    if (cycles > limits.max_cycles)
+      warn("time.end", show(t_end) + " is at least " + show(cycles) + " time steps of at most " + show(dt) +
+                           " (CFL on the state at t = 0, numerics.dt_max): the run will take very long; check the "
+                           "units of time.end");
+  }
+
+  const Untagged untagged = untagged_boundary_edges(problem.mesh);
+  if (untagged.count > 0) {
+    std::string where;
+    for (const auto& p : untagged.examples) where += (where.empty() ? "" : ", ") + point_text(p[0], p[1]);
+    warn("mesh", std::to_string(untagged.count) + " boundary edge(s) have no tag and will be traction-free (e.g. at " +
+                     where + "; all within x in [" + show(untagged.x0) + ", " + show(untagged.x1) + "], y in [" +
+                     show(untagged.y0) + ", " + show(untagged.y1) +
+                     "]); tag them (a Physical Curve) and give them a [[boundary]] (type = \"free\" if meant)");
+  }
+
+  for (std::size_t m = 0; m < problem.materials.size(); ++m) {
+    const Material& material = problem.materials[m];
+    if (!material.strength) continue;
+    const std::string path = "material[" + std::to_string(m) + "].strength";
+    const double mu = material.strength->shear_modulus, yield = material.strength->yield_stress;
+    if (mu > 0 && yield > limits.yield_over_shear * mu)
+      warn(path + ".yield_stress", show(yield) + " is " + show(yield / mu) + " times the shear modulus " + show(mu) +
+                                       ": the material will never yield; check the units (e.g. Pa in a Mbar scene)");
+    double bulk = 0;
+    for (const ZoneState& s : states)
+      if (s.material == static_cast<int>(m)) bulk = std::max(bulk, s.bulk);
+    if (mu > 0 && bulk > 0) {
+      const double ratio = mu / bulk;
+      if (ratio < limits.shear_over_bulk_low || ratio > limits.shear_over_bulk_high)
+        warn(path + ".shear_modulus", show(mu) + " is " + show(ratio) + " times the bulk modulus rho c^2 = " +
+                                          show(bulk) + " of the EOS at t = 0: check the units of the two");
+    }
+  }
+
+  for (std::size_t r = 0; r < problem.regions.size(); ++r) {
+    std::size_t count = 0;
+    double worst = 0;
+    const ZoneState* at = nullptr;
+    for (const ZoneState& s : states) {
+      if (s.region != static_cast<int>(r) || !(s.c > 0)) continue;  // a cold gas (c = 0) has no scale
+      const double ratio = s.speed / s.c;
+      if (ratio > limits.speed_over_sound) {
+        ++count;
+        if (ratio > worst) worst = ratio, at = &s;
+      }
+    }
+    if (count > 0)
+      warn("region[" + std::to_string(r) + "].velocity",
+           "the initial speed is above " + show(limits.speed_over_sound) + " times the sound speed in " +
+               std::to_string(count) + " zone(s) (up to " + show(worst) + " times: |v| = " + show(at->speed) +
+               ", c = " + show(at->c) + " at " + point_text(at->centre_x, at->centre_y) +
+               "); check the units of the velocity");
+  }
+}
+
+}  // namespace stagger::scene_detail

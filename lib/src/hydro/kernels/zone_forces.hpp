@@ -93,8 +93,11 @@ std::int64_t force_zones(const ZoneForceInput& in, const HydroOptions& o, const 
       wy[k] = in.qvy[p];
     }
     // Step 3: the predictor energy with the forces already known, e^{n+1/2} = e^n - dt/2 f.v^n / M.
-    double e_half =
-        energy_after_work(in.e[z], in.dt_half, corner_work(n, in.f_prev_x + b, in.f_prev_y + b, vnx, vny), mass);
+    // An evaluation at t^n (dt_half = 0) takes e^n as it is: the corner arrays may then hold
+    // a failed attempt's forces, non-finite where a zone folded, and 0 * NaN is NaN.
+    double e_half = in.e[z];
+    if (in.dt_half > 0)
+      e_half = energy_after_work(e_half, in.dt_half, corner_work(n, in.f_prev_x + b, in.f_prev_y + b, vnx, vny), mass);
     if (in.energy_source && in.dt_half > 0) {
       // The predictor integrates the energy source too (at the middle of [t^n, t^{n+1/2}]),
       // or the scheme drops to first order in time; the audit counts only step 7's source.

@@ -30,7 +30,9 @@ ZoneVertices make(std::initializer_list<std::array<double, 2>> points) {
 }
 
 // A skewed, non-parallelogram convex quad (counter-clockwise).
-ZoneVertices skewed_quad() { return make({{0.1, -0.2}, {1.3, 0.15}, {1.05, 1.2}, {-0.25, 0.8}}); }
+ZoneVertices skewed_quad() {
+  return make({{0.1, -0.2}, {1.3, 0.15}, {1.05, 1.2}, {-0.25, 0.8}});
+}
 
 // Area as the sum of the fan triangles (0, k, k+1), each 1/2 the cross product.
 double fan_area(const ZoneVertices& v) {
@@ -53,8 +55,8 @@ void linear_field(const ZoneVertices& v, const double c[2], const double L[2][2]
 TEST(GeometryKernels, AreaAndCentreOfASkewedQuadAndAPentagon) {
   for (const ZoneVertices& v : {skewed_quad(), make({{0, 0}, {2, -0.3}, {2.4, 1.1}, {1.1, 2.2}, {-0.4, 1.0}})}) {
     EXPECT_NEAR(G::area(v), fan_area(v), 1e-15);
-    EXPECT_DOUBLE_EQ(G::area<0>(v), 0.5 * polygon_twice_area(v.n, [&](int k) { return v.x[k]; },
-                                                             [&](int k) { return v.y[k]; }));
+    EXPECT_DOUBLE_EQ(G::area<0>(v), 0.5 * polygon_twice_area(
+                                              v.n, [&](int k) { return v.x[k]; }, [&](int k) { return v.y[k]; }));
     double sx = 0, sy = 0;
     for (int k = 0; k < v.n; ++k) sx += v.x[k], sy += v.y[k];
     const auto [cx, cy] = G::centre(v);
@@ -174,8 +176,8 @@ TEST(ForceKernels, EdgeViscosityOnUniformCompression) {
   const Index corner_begin[2] = {0, 4}, corner_point[4] = {0, 1, 2, 3};
   const EdgeContinuation continuation[4];
   const double rho_z[1] = {rho}, C_z[1] = {C};
-  const EdgeViscosityInput in{corner_begin, corner_point, continuation, x.data(), y.data(), ux.data(), uy.data(),
-                              rho_z,        C_z,          c1,           c2,       false};
+  const EdgeViscosityInput in{corner_begin, corner_point, continuation, x.data(), y.data(), ux.data(),
+                              uy.data(),    rho_z,        C_z,          c1,       c2,       false};
   double fx[4] = {0, 0, 0, 0}, fy[4] = {0, 0, 0, 0};
   add_edge_viscosity_forces(in, 0, 1, g1, fx, fy);
   const double du = eps * s;
@@ -188,9 +190,9 @@ TEST(ForceKernels, EdgeViscosityOnUniformCompression) {
   for (int k = 0; k < 4; ++k) ux[k] = -ux[k], uy[k] = -uy[k], fx[k] = fy[k] = 0;
   add_edge_viscosity_forces(in, 0, 1, g1, fx, fy);
   for (int k = 0; k < 4; ++k) {
-      EXPECT_EQ(fx[k], 0.0);
-      EXPECT_EQ(fy[k], 0.0);
-    }
+    EXPECT_EQ(fx[k], 0.0);
+    EXPECT_EQ(fy[k], 0.0);
+  }
 }
 
 TEST(ForceKernels, HourglassIgnoresRigidAndLinearMotion) {
@@ -219,9 +221,9 @@ TEST(ForceKernels, HourglassIgnoresRigidAndLinearMotion) {
   linear_field(v, c, zero, ux, uy);
   forces(v, ux, uy, false, fx, fy);
   for (int k = 0; k < 4; ++k) {
-      EXPECT_NEAR(fx[k], 0, 1e-15);
-      EXPECT_NEAR(fy[k], 0, 1e-15);
-    }
+    EXPECT_NEAR(fx[k], 0, 1e-15);
+    EXPECT_NEAR(fy[k], 0, 1e-15);
+  }
   const ZoneVertices par = make({{0, 0}, {2, 0.5}, {2.7, 1.5}, {0.7, 1.0}});
   for (const auto* L : {&rotation, &general}) {
     linear_field(par, c, *L, ux, uy);
@@ -252,6 +254,20 @@ TEST(TimeStepKernel, CflAndVolumeLimits) {
   // Compression: C replaced by qhat + sqrt(qhat^2 + C^2), qhat = q1 l |div| + q2 C.
   const double div = -20.0, qhat = q1 * l * 20.0 + q2 * C;
   EXPECT_DOUBLE_EQ(zone_time_step(cfl, q1, q2, fA, l, C, div), cfl * l / (qhat + std::sqrt(qhat * qhat + C * C)));
+}
+
+TEST(TimeStepKernel, GrowthInitialAndMaximum) {
+  // growth 1.1 after the first cycle; dt_init only on the first; dt_max always.
+  auto check = [](DtControl c, double dt, DtLimit limit) {
+    EXPECT_DOUBLE_EQ(c.dt, dt);
+    EXPECT_EQ(c.limit, limit);
+  };
+  check(control_time_step(1.0, 2.0, false, 1.1, 0, 0), 1.0, DtLimit::cfl);
+  check(control_time_step(5.0, 2.0, false, 1.1, 0, 0), 1.1 * 2.0, DtLimit::growth);
+  check(control_time_step(5.0, 0.0, true, 1.1, 0.5, 0), 0.5, DtLimit::initial);
+  check(control_time_step(5.0, 2.0, false, 1.1, 0.5, 0), 1.1 * 2.0, DtLimit::growth);  // dt_init ignored
+  check(control_time_step(5.0, 2.0, false, 1.1, 0, 0.3), 0.3, DtLimit::maximum);
+  check(control_time_step(0.2, 2.0, false, 1.1, 0, 0.3), 0.2, DtLimit::cfl);
 }
 
 }  // namespace stagger

@@ -129,7 +129,7 @@ TEST(BurnKernel, ProgrammedBurnFraction) {
   const double t_l = 1e-6, L = 1e-3;
   EXPECT_EQ(burn_fraction(0, 0.5e-6, t_l, L, b, 1.0), 0.0);  // not lit yet
   EXPECT_NEAR(burn_fraction(0, t_l + 0.1 * L / b.detonation_speed, t_l, L, b, 1.0), 0.1, 1e-14);
-  EXPECT_EQ(burn_fraction(0, 1.0, t_l, L, b, 1.0), 1.0);  // clamped
+  EXPECT_EQ(burn_fraction(0, 1.0, t_l, L, b, 1.0), 1.0);    // clamped
   EXPECT_EQ(burn_fraction(0.4, t_l, t_l, L, b, 1.0), 0.4);  // never decreases
   // Beta burn: compression to V (relative volume) gives (1 - V) / (1 - V_CJ).
   b.beta_burn = true, b.cj_relative_volume = 0.75, b.rho0 = 1.0;

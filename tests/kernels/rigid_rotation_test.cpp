@@ -1,6 +1,6 @@
 // Rigid rotation of a pre-stressed zone with discretely rigid kinematics (docs/algorithm.md
-// §7), through the same stress kernels and the
-// same predictor-corrector sequence as the step (steps 3 and 8 of docs/algorithm.md).
+// §7), through the same stress kernels and the same predictor-corrector sequence as the step
+// (steps 3 and 8 of docs/algorithm.md §1).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -81,7 +81,8 @@ TEST(RigidRotation, RateFormIsSecondOrderAsMeasuredByThePrototype) {
   const Rotation r100 = quarter_turn(100, false), r200 = quarter_turn(200, false);
   std::printf("rate form: error %.3e / %.3e, invariant drift %.3e / %.3e (100 / 200 steps)\n", r100.max_error,
               r200.max_error, r100.invariant_drift, r200.invariant_drift);
-  // NUMERICS section 4 (measured): 1.9e-4 and 4.8e-5; sqrt(S:S) drifts 2.3e-6 at 100 steps.
+  // The prototype's figures, reproduced by this code (docs/solids.md, rigid rotation table):
+  // 1.9e-4 and 4.8e-5; sqrt(S:S) drifts 2.3e-6 at 100 steps. The orders are the method's.
   EXPECT_NEAR(r100.max_error, 1.9e-4, 0.2e-4);
   EXPECT_NEAR(std::log2(r100.max_error / r200.max_error), 2.0, 0.1);
   EXPECT_NEAR(r100.invariant_drift, 2.3e-6, 0.3e-6);

@@ -64,7 +64,8 @@ State run(double h) {
 // Largest difference of positions, velocities and specific energies.
 double difference(const State& a, const State& b) {
   double d = 0;
-  for (std::size_t i = 0; i < a.x.size(); ++i) d = std::max({d, std::abs(a.x[i] - b.x[i]), std::abs(a.vx[i] - b.vx[i])});
+  for (std::size_t i = 0; i < a.x.size(); ++i)
+    d = std::max({d, std::abs(a.x[i] - b.x[i]), std::abs(a.vx[i] - b.vx[i])});
   for (std::size_t i = 0; i < a.e.size(); ++i) d = std::max(d, std::abs(a.e[i] - b.e[i]));
   return d;
 }

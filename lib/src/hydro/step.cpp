@@ -73,13 +73,19 @@ T* data_or_null(std::vector<T>& v) {
 }
 
 ZoneStateOutput state_output(Simulation::Impl& s) {
-  return {s.area.data(),    s.rho.data(),    s.p.data(),      s.c.data(),
+  return {s.area.data(),    s.rho.data(),     s.p.data(),       s.c.data(),
           s.grad_xx.data(), s.grad_xy.data(), s.grad_yx.data(), s.grad_yy.data()};
 }
 
 PointInput point_input(const Simulation::Impl& s) {
-  return {s.point_corner_begin.data(), s.point_corners.data(), s.corner_fx.data(), s.corner_fy.data(),
-          s.point_mass.data(),         s.x.data(),             s.y.data(),         s.vx.data(),
+  return {s.point_corner_begin.data(),
+          s.point_corners.data(),
+          s.corner_fx.data(),
+          s.corner_fy.data(),
+          s.point_mass.data(),
+          s.x.data(),
+          s.y.data(),
+          s.vx.data(),
           s.vy.data()};
 }
 
@@ -184,9 +190,9 @@ std::int64_t Simulation::Impl::zone_forces(const double* px, const double* py, d
                           energy_source(*this),
                           dt_half,
                           t_eval};
-  const ZoneForceOutput out{corner_fx.data(),         corner_fy.data(),         q.data(),
-                            data_or_null(rho_half),   data_or_null(c_half),     data_or_null(sxx_half),
-                            data_or_null(syy_half),   data_or_null(sxy_half)};
+  const ZoneForceOutput out{corner_fx.data(),       corner_fy.data(),      q.data(),
+                            data_or_null(rho_half), data_or_null(c_half),  data_or_null(sxx_half),
+                            data_or_null(syy_half), data_or_null(sxy_half)};
   const HydroOptions& o = problem.options;
   std::int64_t failure = kNoFailure;
   for_each_range(*this, [&](const ZoneRange& r, const auto& eos, const ZoneModel& m) {
@@ -200,9 +206,18 @@ std::int64_t Simulation::Impl::zone_forces(const double* px, const double* py, d
 // (qvx, qvy), and the density and sound speed Z1 left in rho_half, c_half.
 void Simulation::Impl::edge_forces(const double* px, const double* py, const double* qvx, const double* qvy) {
   const HydroOptions& o = problem.options;
-  const EdgeViscosityInput in{zone_corner_begin.data(), corner_point.data(), continuation.data(),
-                              px,  py,  qvx,  qvy,  rho_half.data(), c_half.data(),
-                              o.edge_c1, o.edge_c2, o.edge_limiter};
+  const EdgeViscosityInput in{zone_corner_begin.data(),
+                              corner_point.data(),
+                              continuation.data(),
+                              px,
+                              py,
+                              qvx,
+                              qvy,
+                              rho_half.data(),
+                              c_half.data(),
+                              o.edge_c1,
+                              o.edge_c2,
+                              o.edge_limiter};
   for_each_range(*this, [&](const ZoneRange& r, const auto&, const ZoneModel& m) {
     add_edge_viscosity_forces(in, r.begin, r.end, m.edge_gamma_factor, corner_fx.data(), corner_fy.data());
   });
@@ -259,8 +274,7 @@ void Simulation::Impl::external_forces(double t_half) {
 void Simulation::Impl::predict_velocity(double dt, double t_half) {
   const Index np = mesh().num_points();
   const double h = 0.5 * dt;
-  predict_points(point_input(*this), np, h, data_or_null(x_half), data_or_null(y_half), vx_star.data(),
-                 vy_star.data());
+  predict_points(point_input(*this), np, h, data_or_null(x_half), data_or_null(y_half), vx_star.data(), vy_star.data());
   if (has_external) {
     external_forces(t_half);
     add_external_velocity(np, h, point_mass.data(), ext_fx.data(), ext_fy.data(), data_or_null(src_fx),
@@ -285,15 +299,35 @@ void Simulation::Impl::correct_velocity(double dt, double t_new) {
 
 // Z2 (steps 7, 8, 9) over every range; on success the next dt candidate is in dt_next.
 std::int64_t Simulation::Impl::end_of_step(double dt, double t_new) {
-  const ZoneEndInput in{zone_corner_begin.data(), corner_point.data(), x.data(), y.data(),
-                        data_or_null(x_half), data_or_null(y_half), vx.data(), vy.data(), vx_new.data(),
-                        vy_new.data(), corner_fx.data(), corner_fy.data(), zone_mass.data(), e.data(),
-                        data_or_null(sxx), data_or_null(syy), data_or_null(sxy), data_or_null(sxx_half),
-                        data_or_null(syy_half), data_or_null(sxy_half), data_or_null(plastic),
-                        data_or_null(burn), data_or_null(lighting_time), data_or_null(burn_length),
-                        energy_source(*this), dt, t_new};
-  const ZoneEndOutput out{e_new.data(),          data_or_null(source_energy), data_or_null(sxx_new),
-                          data_or_null(syy_new), data_or_null(sxy_new),       data_or_null(plastic_new),
+  const ZoneEndInput in{zone_corner_begin.data(),
+                        corner_point.data(),
+                        x.data(),
+                        y.data(),
+                        data_or_null(x_half),
+                        data_or_null(y_half),
+                        vx.data(),
+                        vy.data(),
+                        vx_new.data(),
+                        vy_new.data(),
+                        corner_fx.data(),
+                        corner_fy.data(),
+                        zone_mass.data(),
+                        e.data(),
+                        data_or_null(sxx),
+                        data_or_null(syy),
+                        data_or_null(sxy),
+                        data_or_null(sxx_half),
+                        data_or_null(syy_half),
+                        data_or_null(sxy_half),
+                        data_or_null(plastic),
+                        data_or_null(burn),
+                        data_or_null(lighting_time),
+                        data_or_null(burn_length),
+                        energy_source(*this),
+                        dt,
+                        t_new};
+  const ZoneEndOutput out{e_new.data(),           data_or_null(source_energy), data_or_null(sxx_new),
+                          data_or_null(syy_new),  data_or_null(sxy_new),       data_or_null(plastic_new),
                           data_or_null(burn_new), state_output(*this)};
   const HydroOptions& o = problem.options;
   DtChoice choice;
@@ -347,7 +381,8 @@ bool Simulation::Impl::try_step(double dt) {
 
   // 2, 3, 5. Z1: half-step geometry and state, corner forces f^{n+1/2}.
   const double* px = data_or_null(x_half);
-  std::int64_t failure = zone_forces(px, data_or_null(y_half), 0.5 * dt, vx_star.data(), vy_star.data(), 0.5 * dt, t_half);
+  std::int64_t failure =
+      zone_forces(px, data_or_null(y_half), 0.5 * dt, vx_star.data(), vy_star.data(), 0.5 * dt, t_half);
   if (failure != kNoFailure) {
     have_previous_forces = false;  // the corner forces now hold this failed attempt's
     if (failure_kind(failure) == kTangled) return false;
@@ -368,10 +403,10 @@ bool Simulation::Impl::try_step(double dt) {
     throw_zone_failure(*this, failure, "at the end of the step");
   }
 
-  // 6 (bookkeeping). Work of the constraints, applied pressures and sources.
+  // 6 (work). Work of the constraints, applied pressures and sources, for the audit.
   account_boundary_work(dt);
 
-  // Commit x^{n+1}, v^{n+1}, e^{n+1}, S^{n+1}, burn.
+  // Commit: x^{n+1}, v^{n+1}, e^{n+1}, S^{n+1}, burn.
   commit(dt);
   t = t_new;
   ++cycle;
@@ -382,13 +417,24 @@ bool Simulation::Impl::try_step(double dt) {
 void Simulation::Impl::step(double t_stop) {
   if (t_stop <= t) return;
   const HydroOptions& o = problem.options;
-  // Time-step control (section 6): CFL and volume limits from the end of the last step,
+  // Time-step control (docs/algorithm.md §9): CFL and volume limits from the end of the last step,
   // growth limit, dt_max, first-step dt_init; land exactly on t_stop.
-  double dt = dt_next;
-  dt_reason = DtReason::cfl;
-  if (cycle > 0 && dt > o.dt_growth * dt_control_prev) dt = o.dt_growth * dt_control_prev, dt_reason = DtReason::growth;
-  if (cycle == 0 && o.dt_init > 0 && o.dt_init < dt) dt = o.dt_init, dt_reason = DtReason::initial;
-  if (o.dt_max > 0 && dt > o.dt_max) dt = o.dt_max, dt_reason = DtReason::maximum;
+  const DtControl control = control_time_step(dt_next, dt_control_prev, cycle == 0, o.dt_growth, o.dt_init, o.dt_max);
+  double dt = control.dt;
+  switch (control.limit) {
+    case DtLimit::cfl:
+      dt_reason = DtReason::cfl;
+      break;
+    case DtLimit::growth:
+      dt_reason = DtReason::growth;
+      break;
+    case DtLimit::initial:
+      dt_reason = DtReason::initial;
+      break;
+    case DtLimit::maximum:
+      dt_reason = DtReason::maximum;
+      break;
+  }
   for (int attempt = 0;; ++attempt) {
     if (dt < dt_min) {
       std::ostringstream msg;
@@ -398,7 +444,8 @@ void Simulation::Impl::step(double t_stop) {
         msg << "; limiting " << describe_zone(*this, z) << ", area " << area[z] << ", sound speed " << c[z]
             << ", density " << rho[z];
       }
-      msg << " (the mesh is tangling or a zone is being crushed: refine the mesh, lower the cfl, or raise the viscosity)";
+      msg << " (the mesh is tangling or a zone is being crushed: refine the mesh, lower the cfl, or raise the "
+             "viscosity)";
       throw Error(msg.str());
     }
     dt_control_prev = dt;
@@ -411,8 +458,9 @@ void Simulation::Impl::step(double t_stop) {
     if (attempt >= o.max_retries) {
       // Report the tangled zone at the end of the last attempt.
       std::ostringstream msg;
-      msg << "cycle " << cycle << ", t = " << t << ": a zone tangled (non-positive zone or corner area) even with dt = "
-          << dt_taken << " after " << attempt << " retries";
+      msg << "cycle " << cycle << ", t = " << t
+          << ": a zone tangled (non-positive zone or corner area) even with dt = " << dt_taken << " after " << attempt
+          << " retries";
       const Index tangled = find_tangled_zone(dt_taken);
       if (tangled >= 0) msg << "; " << describe_zone(*this, tangled);
       msg << " (the mesh is folding there: add hourglass control, switch to the edge viscosity, lower the cfl or "

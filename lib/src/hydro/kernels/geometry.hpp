@@ -44,13 +44,15 @@ struct PlanarGeometry {
   // Signed zone area (shoelace), positive for counter-clockwise zones.
   template <int N = 0>
   [[gnu::always_inline]] static double area(const ZoneVertices& v) {
-    return polygon_area(N ? N : v.n, [&](int k) { return v.x[k]; }, [&](int k) { return v.y[k]; });
+    return polygon_area(
+        N ? N : v.n, [&](int k) { return v.x[k]; }, [&](int k) { return v.y[k]; });
   }
 
   // Zone centre (vertex average).
   template <int N = 0>
   [[gnu::always_inline]] static std::array<double, 2> centre(const ZoneVertices& v) {
-    return polygon_centre(N ? N : v.n, [&](int k) { return v.x[k]; }, [&](int k) { return v.y[k]; });
+    return polygon_centre(
+        N ? N : v.n, [&](int k) { return v.x[k]; }, [&](int k) { return v.y[k]; });
   }
 
   // Corner area vectors a_c = dA/dx_k = 1/2 (y_{k+1} - y_{k-1}, x_{k-1} - x_{k+1}): the
@@ -79,7 +81,8 @@ struct PlanarGeometry {
       const double mpx = 0.5 * (v.x[k] + v.x[kp]), mpy = 0.5 * (v.y[k] + v.y[kp]);
       const double mmx = 0.5 * (v.x[k] + v.x[km]), mmy = 0.5 * (v.y[k] + v.y[km]);
       const double qx[4] = {v.x[k], mpx, cx, mmx}, qy[4] = {v.y[k], mpy, cy, mmy};
-      out[k] = polygon_area(4, [&](int i) { return qx[i]; }, [&](int i) { return qy[i]; });
+      out[k] = polygon_area(
+          4, [&](int i) { return qx[i]; }, [&](int i) { return qy[i]; });
       smallest = std::min(smallest, out[k]);
     }
     return smallest;
@@ -114,8 +117,7 @@ struct PlanarGeometry {
 
   // L_ij = (1/A) sum_c u_i a_c,j.
   [[gnu::always_inline]] static VelocityGradient velocity_gradient(int n, const double* ux, const double* uy,
-                                                                   const double* ax, const double* ay,
-                                                                   double area) {
+                                                                   const double* ax, const double* ay, double area) {
     VelocityGradient L;
     for (int k = 0; k < n; ++k) {
       L.xx += ux[k] * ax[k];

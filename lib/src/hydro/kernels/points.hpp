@@ -16,8 +16,8 @@ struct PointInput {
 };
 
 // P1: x^{n+1/2} = x^n + h v^n (when x_half is given) and v* = v^n + h F / M_p, h = dt/2.
-inline void predict_points(const PointInput& in, Index np, double h, double* x_half, double* y_half,
-                           double* vx_star, double* vy_star) {
+inline void predict_points(const PointInput& in, Index np, double h, double* x_half, double* y_half, double* vx_star,
+                           double* vy_star) {
   const double *x = in.x, *y = in.y, *vx = in.vx, *vy = in.vy, *M = in.mass;
 #pragma omp parallel for schedule(static) if (np > kParallelMin)
   for (Index p = 0; p < np; ++p) {
@@ -33,9 +33,8 @@ inline void predict_points(const PointInput& in, Index np, double h, double* x_h
 }
 
 // v += h (F_ext + F_src) / M_p: applied pressures and momentum sources (src may be null).
-inline void add_external_velocity(Index np, double h, const double* mass, const double* ext_fx,
-                                  const double* ext_fy, const double* src_fx, const double* src_fy, double* vx,
-                                  double* vy) {
+inline void add_external_velocity(Index np, double h, const double* mass, const double* ext_fx, const double* ext_fy,
+                                  const double* src_fx, const double* src_fy, double* vx, double* vy) {
   const bool sources = src_fx != nullptr;
   for (Index p = 0; p < np; ++p) {
     vx[p] += h * (ext_fx[p] + (sources ? src_fx[p] : 0.0)) / mass[p];
@@ -86,7 +85,8 @@ inline double constraint_work(std::size_t count, const Index* points, const doub
   return work;
 }
 
-// Work of point forces (fx, fy) over dt with v_bar: dt sum_p F_p . v_bar_p, added to *work.
+// Work over dt of the applied-pressure forces and of the momentum sources (src may be null)
+// with v_bar: dt sum_p F_p . v_bar_p, added to external_work and source_work.
 inline void point_force_work(Index np, double dt, const double* vx, const double* vy, const double* ux,
                              const double* uy, const double* ext_fx, const double* ext_fy, const double* src_fx,
                              const double* src_fy, double& external_work, double& source_work) {

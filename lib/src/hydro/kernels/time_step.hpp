@@ -18,6 +18,24 @@ namespace stagger {
   return dt;
 }
 
+// The step's dt from the smallest zone candidate: at most `growth` times the previous dt
+// (after the first cycle), dt_init on the first cycle if smaller, never above dt_max (0 =
+// none). `limit` says which bound was active.
+enum class DtLimit { cfl, growth, initial, maximum };
+struct DtControl {
+  double dt;
+  DtLimit limit;
+};
+
+inline DtControl control_time_step(double candidate, double previous, bool first_cycle, double growth, double dt_init,
+                                   double dt_max) {
+  DtControl c{candidate, DtLimit::cfl};
+  if (!first_cycle && c.dt > growth * previous) c = {growth * previous, DtLimit::growth};
+  if (first_cycle && dt_init > 0 && dt_init < c.dt) c = {dt_init, DtLimit::initial};
+  if (dt_max > 0 && c.dt > dt_max) c = {dt_max, DtLimit::maximum};
+  return c;
+}
+
 // The smallest candidate and its zone; ties go to the lowest zone (deterministic for any
 // thread count).
 struct DtChoice {

@@ -9,8 +9,8 @@
 
 namespace stagger {
 
-void add_edge_viscosity_forces(const EdgeViscosityInput& in, Index begin, Index end, double gamma_factor,
-                               double* fx, double* fy) {
+void add_edge_viscosity_forces(const EdgeViscosityInput& in, Index begin, Index end, double gamma_factor, double* fx,
+                               double* fy) {
   const Index* cb = in.zone_corner_begin;
   const Index* cp = in.corner_point;
   const double *px = in.x, *py = in.y, *wx = in.ux, *wy = in.uy;
@@ -19,8 +19,8 @@ void add_edge_viscosity_forces(const EdgeViscosityInput& in, Index begin, Index 
   for (Index z = begin; z < end; ++z) {
     const Index b = cb[z];
     const int n = static_cast<int>(cb[z + 1] - b);
-    const auto [cx, cy] =
-        polygon_centre(n, [&](int k) { return px[cp[b + k]]; }, [&](int k) { return py[cp[b + k]]; });
+    const auto [cx, cy] = polygon_centre(
+        n, [&](int k) { return px[cp[b + k]]; }, [&](int k) { return py[cp[b + k]]; });
     const double rho = in.rho[z], C = in.C[z];
     for (int k = 0; k < n; ++k) {
       const Index p0 = cp[b + k], p1 = cp[b + (k + 1) % n];

@@ -12,8 +12,12 @@ namespace stagger {
 // periodic side); or mirror_code(w): the edge ends on a wall, symmetry plane or piston edge
 // whose other end point is w, and the continuation is the edge's mirror image in it.
 constexpr Index kContinuationFree = -1, kContinuationOpen = -2;
-constexpr Index mirror_code(Index wall_end) { return -3 - wall_end; }
-constexpr Index mirror_wall_end(Index code) { return -3 - code; }
+constexpr Index mirror_code(Index wall_end) {
+  return -3 - wall_end;
+}
+constexpr Index mirror_wall_end(Index code) {
+  return -3 - code;
+}
 
 struct EdgeContinuation {
   Index ahead = kContinuationFree, behind = kContinuationFree;
@@ -34,7 +38,7 @@ struct EdgeViscosityInput {
 // Adds the edge forces of the zones [begin, end), all of one material whose quadratic
 // coefficient factor is gamma_factor ((gamma+1)/4 for an ideal gas), into (fx, fy) per corner.
 // Each zone writes only its own corners.
-void add_edge_viscosity_forces(const EdgeViscosityInput& in, Index begin, Index end, double gamma_factor,
-                               double* fx, double* fy);
+void add_edge_viscosity_forces(const EdgeViscosityInput& in, Index begin, Index end, double gamma_factor, double* fx,
+                               double* fy);
 
 }  // namespace stagger

@@ -30,10 +30,10 @@ struct ZoneStateOutput {
 // restart, remap, failed step) so that a restart reproduces it bitwise. Returns the failure
 // code or kNoFailure; writes nothing of the state on failure before the EOS.
 template <int N, class Geometry, class Eos>
-[[gnu::always_inline]] inline std::int64_t end_state(Index z, const ZoneVertices& v, const double* ux,
-                                                     const double* uy, double mass, double energy, double burn,
-                                                     const HydroOptions& o, const Eos& eos, const ZoneModel& m,
-                                                     const ZoneStateOutput& out, double& dt_zone) {
+[[gnu::always_inline]] inline std::int64_t end_state(Index z, const ZoneVertices& v, const double* ux, const double* uy,
+                                                     double mass, double energy, double burn, const HydroOptions& o,
+                                                     const Eos& eos, const ZoneModel& m, const ZoneStateOutput& out,
+                                                     double& dt_zone) {
   double ca[kMaxZoneVertices], ax[kMaxZoneVertices], ay[kMaxZoneVertices];
   const double area = Geometry::template area<N>(v);
   if (!(area > 0) || (o.check_corner_areas && !(Geometry::template corner_areas<N>(v, ca) > 0)))
@@ -55,8 +55,8 @@ template <int N, class Geometry, class Eos>
     const VelocityGradient L = Geometry::velocity_gradient(n, ux, uy, ax, ay, area);
     out.grad_xx[z] = L.xx, out.grad_xy[z] = L.xy, out.grad_yx[z] = L.yx, out.grad_yy[z] = L.yy;
   }
-  dt_zone = zone_time_step(o.cfl, o.q1, o.q2, o.volume_limit, Geometry::template characteristic_length<N>(v, area),
-                           C, div);
+  dt_zone =
+      zone_time_step(o.cfl, o.q1, o.q2, o.volume_limit, Geometry::template characteristic_length<N>(v, area), C, div);
   return kNoFailure;
 }
 
@@ -71,8 +71,8 @@ struct ZoneEndInput {
   const double *fx, *fy;          // f^{n+1/2} per corner
   const double *zone_mass, *e;
   const double *sxx, *syy, *sxy, *sxx_half, *syy_half, *sxy_half, *plastic;  // (strength)
-  const double *burn, *lighting_time, *burn_length;                         // (burn)
-  const EnergySource* energy_source;                                        // null: none
+  const double *burn, *lighting_time, *burn_length;                          // (burn)
+  const EnergySource* energy_source;                                         // null: none
   double dt, t_new;
 };
 
@@ -149,7 +149,8 @@ std::int64_t finish_zones(const ZoneEndInput& in, const HydroOptions& o, const Z
         out.burn_new[z] = burn;
       }
       double dtz = 1e300;
-      std::int64_t code = end_state<N, Geometry>(z, ve, nx, ny, in.zone_mass[z], energy, burn, o, eos, m, out.state, dtz);
+      std::int64_t code =
+          end_state<N, Geometry>(z, ve, nx, ny, in.zone_mass[z], energy, burn, o, eos, m, out.state, dtz);
       if (code == kNoFailure && !std::isfinite(energy)) code = failure_code(z, kNotFinite);
       failure = std::min(failure, code);
       if (dtz < local.dt) local = {dtz, z};

@@ -33,7 +33,7 @@ struct ZoneForceInput {
   // its own corners before it overwrites them.
   const double *f_prev_x, *f_prev_y;
   const double *zone_mass, *e;
-  const double *sxx, *syy, *sxy;                       // S^n (strength)
+  const double *sxx, *syy, *sxy;                        // S^n (strength)
   const double *grad_xx, *grad_xy, *grad_yx, *grad_yy;  // L(v^n) on x^n (strength)
   const double *burn, *lighting_time, *burn_length;     // (burn)
   const EnergySource* energy_source;                    // null: none
@@ -43,9 +43,9 @@ struct ZoneForceInput {
 
 // Outputs of Z1, written per zone (null where absent).
 struct ZoneForceOutput {
-  double *fx, *fy;                      // f^{n+1/2} per corner (overwritten)
-  double* q;                            // bulk q
-  double *rho_half, *c_half;            // half-step density and C (edge viscosity)
+  double *fx, *fy;                         // f^{n+1/2} per corner (overwritten)
+  double* q;                               // bulk q
+  double *rho_half, *c_half;               // half-step density and C (edge viscosity)
   double *sxx_half, *syy_half, *sxy_half;  // S^{n+1/2} (strength)
 };
 
@@ -127,7 +127,8 @@ std::int64_t force_zones(const ZoneForceInput& in, const HydroOptions& o, const 
     // Step 5: bulk q from div v* on the half geometry.
     const double div = Geometry::divergence(n, wx, wy, ax, ay, area);
     double qz = 0;
-    if (bulk_q && div < 0) qz = bulk_viscosity(rho, Geometry::template characteristic_length<N>(v, area), div, C, o.q1, o.q2);
+    if (bulk_q && div < 0)
+      qz = bulk_viscosity(rho, Geometry::template characteristic_length<N>(v, area), div, C, o.q1, o.q2);
     out.q[z] = qz;
     if (out.rho_half) {
       out.rho_half[z] = rho;

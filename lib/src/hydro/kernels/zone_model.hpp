@@ -8,11 +8,11 @@ namespace stagger {
 
 struct ZoneModel {
   bool strength = false;
-  double mu = 0, yield = 0;       // shear modulus and yield stress (strength)
+  double mu = 0, yield = 0;  // shear modulus and yield stress (strength)
   bool burn = false;
-  BurnModel burn_model;           // (burn)
-  double edge_gamma_factor = 0.5; // the edge viscosity's quadratic factor
-  double min_energy = -1e300;     // below it the run stops
+  BurnModel burn_model;            // (burn)
+  double edge_gamma_factor = 0.5;  // the edge viscosity's quadratic factor
+  double min_energy = -1e300;      // below it the run stops
 };
 
 // Specific energy source s_e(x, y, t) of a manufactured solution.

@@ -16,9 +16,15 @@ constexpr Index kParallelMin = 4096;
 enum ZoneFailure : int { kTangled = 0, kEosDomain = 1, kNotFinite = 2 };
 
 // Encodes (zone, kind) so that a min-reduction picks the lowest zone deterministically.
-inline std::int64_t failure_code(Index z, int kind) { return static_cast<std::int64_t>(z) * 4 + kind; }
+inline std::int64_t failure_code(Index z, int kind) {
+  return static_cast<std::int64_t>(z) * 4 + kind;
+}
 constexpr std::int64_t kNoFailure = std::numeric_limits<std::int64_t>::max();
-inline Index failure_zone(std::int64_t code) { return static_cast<Index>(code / 4); }
-inline int failure_kind(std::int64_t code) { return static_cast<int>(code % 4); }
+inline Index failure_zone(std::int64_t code) {
+  return static_cast<Index>(code / 4);
+}
+inline int failure_kind(std::int64_t code) {
+  return static_cast<int>(code % 4);
+}
 
 }  // namespace stagger

@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# libFuzzer targets of issue 7 (docs/robustness.md): the scene parser, the polygon-soup
+# libFuzzer targets (docs/robustness.md §3): the scene parser, the polygon-soup
 # import (build_mesh) and the .msh reader. Builds the libraries with clang and
 # -fsanitize=fuzzer-no-link,address,undefined in build-fuzz/, links each target in fuzz/
 # with -fsanitize=fuzzer,address,undefined, and runs each for SECONDS (default 60) on a
-# copy of its seed corpus (fuzz/corpus/<target>; new inputs land in build-fuzz/corpus/).
+# copy of its seed corpus (scripts/fuzz_corpus.sh writes it to build-fuzz/seeds/<target> from
+# the example scenes, the bad-input catalogue and fuzz/corpus; new inputs land in
+# build-fuzz/corpus/).
 #   scripts/fuzz.sh [SECONDS] [TARGET...]     TARGET: scene soup msh (default: all)
 # Crashes are written to build-fuzz/artifacts/<target>/; rerun one with
 #   build-fuzz/fuzz/<target>_fuzzer build-fuzz/artifacts/<target>/crash-...
@@ -25,6 +27,7 @@ fi
 ninja -C "$build" -j"$jobs" stagger stagger_scene stagger_meshgen
 
 mkdir -p "$build/fuzz"
+"$root/scripts/fuzz_corpus.sh" "$build/seeds"
 libs=(-L"$build/lib" -L"$build/lib/src/scene" -L"$build/meshgen"
       -Wl,-rpath,"$build/lib:$build/lib/src/scene:$build/meshgen"
       -lstagger_scene -lstagger_meshgen -lstagger)
@@ -47,7 +50,7 @@ for target in "${targets[@]}"; do
   corpus="$build/corpus/$target"
   artifacts="$build/artifacts/$target"
   mkdir -p "$corpus" "$artifacts"
-  cp -n "$root/fuzz/corpus/$target/"* "$corpus/" 2>/dev/null || true
+  for seed in "$build/seeds/$target/"*; do [ -e "$corpus/$(basename "$seed")" ] || cp "$seed" "$corpus/"; done
   # STAGGER_FUZZ_KEEP_GOING=1: fork mode, record every crash/timeout and go on.
   keep_going=()
   [ "${STAGGER_FUZZ_KEEP_GOING:-0}" = 1 ] && keep_going=(-fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1)

@@ -2,7 +2,7 @@
 # Installs Stagger's build and test dependencies from Debian 12 packages (as root).
 # Quick when everything is already installed.
 set -euo pipefail
-packages=(cmake ninja-build g++ pkg-config libcgal-dev libgmsh-dev libeigen3-dev libvtk9-dev libgtest-dev
+packages=(cmake ninja-build g++ pkg-config libcgal-dev libgmsh-dev libvtk9-dev libgtest-dev
           libtomlplusplus-dev libmuparser-dev python3 python3-matplotlib)
 missing=()
 for p in "${packages[@]}"; do

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# AddressSanitizer + UndefinedBehaviorSanitizer build of the whole test suite (issue 7).
+# AddressSanitizer + UndefinedBehaviorSanitizer build of the whole test suite (docs/robustness.md §4).
 # Configures build-sanitize/ with -DSTAGGER_SANITIZE=ON (RelWithDebInfo, so that the tests
 # stay fast enough), builds everything and runs ctest. Any sanitizer report fails the
 # test that triggered it (UBSan does not recover: -fno-sanitize-recover=undefined).

@@ -1,5 +1,5 @@
 // `stagger bench [SUITE...] [--quick] [--out DIR] [--threads N]`: the benchmark suites of
-// issue 6 (docs/benchmarks.md). Each run is a child process (bench_child.cpp); this file
+// docs/benchmarks.md. Each run is a child process (bench_child.cpp); this file
 // builds the run lists, writes one CSV per suite and the observed orders of the ladders.
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 #pragma once
-// `stagger bench`: resolution ladders, throughput and stability stress runs (issue 6).
+// `stagger bench`: resolution ladders, throughput and stability stress runs (docs/benchmarks.md).
 // Every measured run happens in its own child process (`stagger bench --one ...`, hidden),
 // so that its peak RSS (VmHWM) is its own and a crash or hang cannot take the suite down.
 #include <string>

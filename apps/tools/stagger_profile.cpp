@@ -13,10 +13,9 @@
 // the status of summary.json, and exits with code 3. At the end: frames.csv (frame, time, cycle, files), history.csv (energy audit every N
 // cycles, HistoryWriter), summary.json (write_summary at the last time), and for the
 // be_shell reference exact_shell.csv (the analytic radii and kinetic energy on a fine grid).
-// The exact solutions are the classes of stagger/verify.hpp; their parameters are read from
-// the scene's [verification] table and materials exactly as the scene reader does.
-#include <toml++/toml.h>
-
+// The exact solutions are the classes of stagger/verify.hpp, built from the parameters that
+// the scene reader resolved (Scene::verification), so the profile and summary.json compare
+// against the same reference.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -113,59 +112,6 @@ Options parse_arguments(int argc, char** argv) {
   return options;
 }
 
-// ---- the [verification] table, with --set verification.key=value applied ----
-
-class VerificationTable {
-public:
-  VerificationTable(const std::string& scene, const std::vector<std::pair<std::string, std::string>>& overrides) {
-    const toml::table root = toml::parse_file(scene_ = scene);
-    if (const auto* table = root["verification"].as_table()) table_ = *table;
-    for (const auto& [key, value] : overrides)
-      if (key.rfind("verification.", 0) == 0) overrides_[key.substr(13)] = value;
-  }
-  const std::string& scene() const { return scene_; }
-  bool has(const std::string& key) const { return overrides_.count(key) != 0 || table_.contains(key); }
-  std::string string(const std::string& key, const std::string& fallback = "") const {
-    if (auto it = overrides_.find(key); it != overrides_.end()) {
-      std::string text = it->second;
-      if (text.size() >= 2 && text.front() == '"' && text.back() == '"') text = text.substr(1, text.size() - 2);
-      return text;
-    }
-    return table_[key].value_or(fallback);
-  }
-  double number(const std::string& key, double fallback) const {
-    if (auto it = overrides_.find(key); it != overrides_.end()) return parse_number(it->second, "verification." + key);
-    return table_[key].value<double>().value_or(fallback);
-  }
-  stagger::GasState gas_state(const std::string& key) const {
-    stagger::GasState state;
-    const auto* sub = table_[key].as_table();
-    if (sub == nullptr) throw Error("stagger-profile: [verification] " + key + " missing");
-    state.density = (*sub)["density"].value<double>().value_or(0.0);
-    state.velocity = (*sub)["velocity"].value<double>().value_or(0.0);
-    state.pressure = (*sub)["pressure"].value<double>().value_or(0.0);
-    return state;
-  }
-
-private:
-  std::string scene_;
-  toml::table table_;
-  std::map<std::string, std::string> overrides_;
-};
-
-const stagger::Material& reference_material(const VerificationTable& table, const stagger::Problem& problem) {
-  const std::string name = table.string("material");
-  for (const auto& material : problem.materials)
-    if (name.empty() || material.name == name) return material;
-  throw Error("stagger-profile: [verification] material '" + name + "' not found");
-}
-
-double gas_gamma(const VerificationTable& table, const stagger::Problem& problem) {
-  const auto& material = reference_material(table, problem);
-  const auto* gas = std::get_if<stagger::IdealGas>(&material.eos);
-  return table.number("gamma", gas ? gas->gamma : 1.4);
-}
-
 // ---- pointwise exact solutions ----
 
 /// Exact zone values at (x, y, t): column name -> value.
@@ -188,43 +134,39 @@ ExactColumns radial_columns(const stagger::GasState& state, double x, double y, 
 }
 
 struct ReferenceSetup {
-  std::string kind;
   ExactFunction exact;                            // empty: no pointwise solution
   std::optional<stagger::HowellBallShell> shell;  // be_shell only
 };
 
-ReferenceSetup make_reference(const VerificationTable& table, const stagger::Problem& problem) {
+// The exact fields of the scene's reference, from the parameters the scene reader resolved
+// (Scene::verification: the same objects RunControl::reference evaluates).
+ReferenceSetup make_reference(const stagger::VerificationSetup& verification) {
   using namespace stagger;
   ReferenceSetup setup;
-  setup.kind = table.string("reference");
-  const std::string& kind = setup.kind;
-  if (kind == "shock_tube") {
-    const double gamma = gas_gamma(table, problem);
-    const auto riemann = std::make_shared<ExactRiemann>(table.gas_state("left"), table.gas_state("right"), gamma,
-                                                        table.number("x0", 0.5));
+  const auto& parameters = verification.parameters;
+  if (const auto* tube = std::get_if<ShockTubeReference>(&parameters)) {
+    const double gamma = tube->gamma;
+    const auto riemann = std::make_shared<ExactRiemann>(tube->left, tube->right, gamma, tube->x0);
     setup.exact = [riemann, gamma](double x, double, double t) {
       const GasState s = riemann->sample(x, t);
       return gas_columns(s.density, s.velocity, 0.0, s.pressure, gamma);
     };
-  } else if (kind == "noh") {
-    const double gamma = gas_gamma(table, problem);
-    const auto noh = std::make_shared<NohSolution>(gamma, table.number("density", 1.0), table.number("speed", 1.0), 2);
+  } else if (const auto* noh_parameters = std::get_if<NohReference>(&parameters)) {
+    const double gamma = noh_parameters->gamma;
+    const auto noh = std::make_shared<NohSolution>(gamma, noh_parameters->density, noh_parameters->speed, 2);
     setup.exact = [noh, gamma](double x, double y, double t) {
       return radial_columns(noh->state(std::hypot(x, y), t), x, y, gamma);
     };
-  } else if (kind == "sedov") {
-    const double gamma = gas_gamma(table, problem);
-    double deposited = 0;
-    for (const auto& deposit : problem.deposits) deposited += deposit.energy;
-    const double quarter = table.number("energy", deposited);
+  } else if (const auto* sedov_parameters = std::get_if<SedovReference>(&parameters)) {
+    const double gamma = sedov_parameters->gamma;
     // The scene deposits a quarter of the full-plane energy (verify.hpp sedov_reference).
-    const auto sedov = std::make_shared<SedovSolution>(gamma, 2, table.number("density", 1.0), 4.0 * quarter);
+    const auto sedov =
+        std::make_shared<SedovSolution>(gamma, 2, sedov_parameters->density, 4.0 * sedov_parameters->energy_quarter);
     setup.exact = [sedov, gamma](double x, double y, double t) {
       return radial_columns(sedov->state(std::hypot(x, y), t), x, y, gamma);
     };
-  } else if (kind == "saltzman") {
-    const double gamma = gas_gamma(table, problem);
-    const double u = table.number("piston_speed", 1.0), rho0 = table.number("density", 1.0);
+  } else if (const auto* saltzman = std::get_if<SaltzmanReference>(&parameters)) {
+    const double gamma = saltzman->gamma, u = saltzman->piston_speed, rho0 = saltzman->density;
     setup.exact = [gamma, u, rho0](double x, double, double t) {
       // Strong piston shock into cold gas (Rankine-Hugoniot, p0 = 0): u_s = (gamma+1)/2 u,
       // rho = rho0 (gamma+1)/(gamma-1), p = rho0 u_s u behind it.
@@ -232,22 +174,14 @@ ReferenceSetup make_reference(const VerificationTable& table, const stagger::Pro
       if (x < shock) return gas_columns(rho0 * (gamma + 1.0) / (gamma - 1.0), u, 0.0, rho0 * 0.5 * (gamma + 1.0) * u * u, gamma);
       return gas_columns(rho0, 0.0, 0.0, 0.0, gamma);
     };
-  } else if (kind == "taylor_green") {
-    const double p0 = table.number("p0", 1.0);
+  } else if (const auto* taylor_green = std::get_if<TaylorGreenReference>(&parameters)) {
+    const double p0 = taylor_green->p0;
     setup.exact = [p0](double x, double y, double) {
       const auto v = taylor_green_velocity(x, y);
       return gas_columns(1.0, v[0], v[1], taylor_green_pressure(x, y, p0), 5.0 / 3.0);
     };
-  } else if (kind == "piston") {
-    const Material& material = reference_material(table, problem);
-    PistonParameters parameters;
-    parameters.eos = std::get<MieGruneisen>(material.eos);
-    if (!material.strength) throw Error("stagger-profile: the piston reference needs a material with strength");
-    parameters.shear_modulus = material.strength->shear_modulus;
-    parameters.yield_stress = material.strength->yield_stress;
-    parameters.initial_pressure = table.number("initial_pressure", parameters.initial_pressure);
-    parameters.piston_velocity = table.number("piston_velocity", parameters.piston_velocity);
-    const auto piston = std::make_shared<ElasticPlasticPiston>(parameters);
+  } else if (const auto* piston_parameters = std::get_if<PistonParameters>(&parameters)) {
+    const auto piston = std::make_shared<ElasticPlasticPiston>(*piston_parameters);
     setup.exact = [piston](double x, double, double t) {
       const SolidState s = piston->sample(x, t);
       return ExactColumns{{"exact_density", s.density},
@@ -257,14 +191,8 @@ ReferenceSetup make_reference(const VerificationTable& table, const stagger::Pro
                           {"exact_velocity_y", 0.0},
                           {"exact_deviatoric_stress_xx", s.stress_xx}};
     };
-  } else if (kind == "detonation") {
-    const Material& material = reference_material(table, problem);
-    DetonationParameters parameters;
-    parameters.eos = std::get<Jwl>(material.eos);
-    if (material.burn) parameters.nominal_speed = material.burn->detonation_speed;
-    parameters.energy_per_volume = table.number("energy_per_volume", parameters.energy_per_volume);
-    parameters.x0 = table.number("x0", parameters.x0);
-    const auto detonation = std::make_shared<CJDetonation>(parameters);
+  } else if (const auto* detonation_parameters = std::get_if<DetonationParameters>(&parameters)) {
+    const auto detonation = std::make_shared<CJDetonation>(*detonation_parameters);
     setup.exact = [detonation](double x, double, double t) {
       const DetonationState s = detonation->sample(x, t);
       return ExactColumns{{"exact_density", s.density},
@@ -272,23 +200,8 @@ ReferenceSetup make_reference(const VerificationTable& table, const stagger::Pro
                           {"exact_velocity_x", s.velocity},
                           {"exact_velocity_y", 0.0}};
     };
-  } else if (kind == "accuracy") {
-    // Its parameters live in [sources] (lib/src/scene/references.cpp reads them there).
-    const toml::table root = toml::parse_file(table.scene());
-    const auto* sources = root["sources"].as_table();
-    if (sources == nullptr) throw Error("stagger-profile: the accuracy reference needs a [sources] table");
-    AccuracyParameters parameters;
-    const std::string name = (*sources)["material"].value_or(std::string());
-    for (const auto& material : problem.materials)
-      if (name.empty() || material.name == name) {
-        parameters.eos = std::get<MieGruneisen>(material.eos);
-        break;
-      }
-    parameters.velocity = (*sources)["velocity"].value<double>().value_or(parameters.velocity);
-    parameters.s1 = (*sources)["s1"].value<double>().value_or(parameters.s1);
-    parameters.energy = (*sources)["energy"].value<double>().value_or(parameters.energy);
-    parameters.amplitude = (*sources)["amplitude"].value<double>().value_or(parameters.amplitude);
-    const auto solution = std::make_shared<AccuracySolution>(parameters);
+  } else if (const auto* accuracy = std::get_if<AccuracyParameters>(&parameters)) {
+    const auto solution = std::make_shared<AccuracySolution>(*accuracy);
     setup.exact = [solution](double x, double y, double t) {
       const double v = solution->parameters().velocity;
       return ExactColumns{{"exact_density", solution->density(x, y, t)},
@@ -299,15 +212,8 @@ ReferenceSetup make_reference(const VerificationTable& table, const stagger::Pro
                           {"exact_deviatoric_stress_yy", solution->stress_yy(x, y, t)},
                           {"exact_deviatoric_stress_xy", solution->stress_xy(x, y, t)}};
     };
-  } else if (kind == "be_shell") {
-    const Material& material = reference_material(table, problem);
-    ShellParameters parameters;
-    parameters.density = std::get<MieGruneisen>(material.eos).rho0;
-    if (material.strength) parameters.yield_stress = material.strength->yield_stress;
-    parameters.inner_radius = table.number("inner_radius", parameters.inner_radius);
-    parameters.outer_radius = table.number("outer_radius", parameters.outer_radius);
-    parameters.velocity = table.number("velocity", parameters.velocity);
-    setup.shell.emplace(parameters);
+  } else if (const auto* shell = std::get_if<ShellParameters>(&parameters)) {
+    setup.shell.emplace(*shell);
   }
   return setup;
 }
@@ -360,9 +266,7 @@ int run(const Options& options) {
   namespace fs = std::filesystem;
   const auto start = std::chrono::steady_clock::now();
   stagger::Scene scene = stagger::load_scene(options.scene, options.overrides);
-  const VerificationTable table(options.scene, options.overrides);
-  ReferenceSetup reference;
-  if (table.has("reference")) reference = make_reference(table, scene.problem);
+  const ReferenceSetup reference = make_reference(scene.verification);
 
   stagger::Simulation simulation(std::move(scene.problem));
   const double t_end = simulation.problem().t_end;

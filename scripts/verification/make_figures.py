@@ -225,14 +225,16 @@ def fig_sod(runs, out):
     out.append(save(fig, "verif_sod_convergence.png"))
 
 
-def sod_tables(runs):
+def sod_tables(runs, roundoff=None):
+    """roundoff formats the round-off columns (check_tables.py writes them as a decade bound)."""
+    roundoff = roundoff or fmt
     rows = []
     for k in (100, 200, 400):
         r = runs[f"sod_{k}"]
         for t in (0.1, 0.2):
             e = r.errors(t)
             rows.append([f"{k}x5", t, r.cycles(t), e["L1_density"], e["L1_velocity"], e["L1_pressure"],
-                         e.get("max_y_variation", float("nan"))])
+                         roundoff(e.get("max_y_variation", float("nan")))])
     text = table(["mesh", "t", "cycles", "L1 density", "L1 velocity", "L1 pressure", "max y-variation"], rows)
     orders = []
     for field in ("density", "velocity", "pressure"):
@@ -389,7 +391,8 @@ def fig_saltzman(runs, out):
     out.append(save(fig, "verif_saltzman_map.png"))
 
 
-def saltzman_tables(runs):
+def saltzman_tables(runs, roundoff=None):
+    roundoff = roundoff or fmt
     rows = []
     for name in ("saltzman_edge_fb", "saltzman_edge_gamma", "saltzman_edge_none", "saltzman_bulk_fb"):
         r = runs[name]
@@ -401,7 +404,7 @@ def saltzman_tables(runs):
         core_error = float(np.max(np.abs(z["density"][core] - 4))) if np.any(core) else float("nan")
         rows.append([name, r.time(), r.cycles(), e.get("shock_position"), e.get("shock_position_exact"),
                      e.get("plateau_density"), e.get("inner_row_max_density_error"), core_error,
-                     e.get("L1_density"), r.audit(),
+                     e.get("L1_density"), roundoff(r.audit()),
                      "completed" if r.ok else "stopped"])
     return table(["run", "t reached", "cycles", "shock x", "exact", "plateau mean (4)", "inner-row max error",
                   "same, 0.02 away from piston and shock", "L1 density", "max audit", "status"], rows)
@@ -430,7 +433,8 @@ def fig_smooth(runs, out):
     out.append(save(fig, "verif_smooth.png"))
 
 
-def smooth_tables(runs):
+def smooth_tables(runs, roundoff=None):
+    roundoff = roundoff or fmt
     rows = []
     ns = (16, 32, 64, 128)
     for i, n in enumerate(ns):
@@ -442,7 +446,7 @@ def smooth_tables(runs):
             row += [order(p["L2_velocity"], e["L2_velocity"]), order(p["L2_pressure"], e["L2_pressure"])]
         else:
             row += [float("nan"), float("nan")]
-        row.append(r.audit())
+        row.append(roundoff(r.audit()))
         rows.append(row)
     return table(["mesh", "cycles", "L2 velocity", "L2 pressure", "L2 density", "order v", "order p", "max audit"],
                  rows)
@@ -635,14 +639,36 @@ def detonation_tables(runs):
     return text
 
 
-def audit_table(runs):
+def audit_table(runs, old_rows=None):
+    """One row per run; runs not loaded this time keep their row of the previous file."""
     rows = []
     for name in RUNS:
         if name in runs:
             r = runs[name]
             rows.append([name, r.summary["zones"], r.summary["cycles"], r.summary["time"], r.audit(),
                          r.summary["loop_seconds"], r.summary["status"][:60]])
+        elif old_rows and name in old_rows:
+            rows.append(old_rows[name])
     return table(["run", "zones", "cycles", "t reached", "max audit over the run", "loop s", "status"], rows)
+
+
+def read_results(path):
+    """The sections ("## title" -> text) and the audit-table rows (run -> cells) of an existing
+    verif_results.md, so that a partial run (--only) keeps what it did not recompute."""
+    sections, audit_rows = {}, {}
+    if not os.path.exists(path):
+        return sections, audit_rows
+    with open(path) as f:
+        text = f.read()
+    for chunk in text.split("\n## ")[1:]:
+        title = chunk.split("\n", 1)[0].strip()
+        sections[title] = "## " + chunk.rstrip("\n") + "\n\n"
+    audit = sections.get("Every run: energy audit and cost", "")
+    for line in audit.splitlines()[4:]:
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) == 7:
+            audit_rows[cells[0]] = cells
+    return sections, audit_rows
 
 
 SECTIONS = [
@@ -665,7 +691,9 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build", default=os.path.join(ROOT, "build"))
     parser.add_argument("--work", default=os.path.join(ROOT, "build", "verification"))
-    parser.add_argument("--only", nargs="*", help="run names (or prefixes) to run")
+    parser.add_argument("--only", nargs="*",
+                        help="run names (or prefixes) to run, plot and tabulate; the other sections of "
+                             "verif_results.md and their figures are kept as they are")
     parser.add_argument("--rerun", action="store_true", help="run again even if results exist")
     parser.add_argument("--plot-only", action="store_true")
     parser.add_argument("--jobs", type=int, default=1)
@@ -682,23 +710,29 @@ def main():
                 print(f"{name:24s} {status:10s} {seconds:7.1f} s", flush=True)
 
     runs = {}
-    for name in RUNS:
+    for name in names:
         try:
             runs[name] = Run(args.work, name)
         except (OSError, KeyError) as failure:
             print(f"warning: no results for {name}: {failure}", file=sys.stderr)
     os.makedirs(FIGURES, exist_ok=True)
+    results_path = os.path.join(FIGURES, "verif_results.md")
+    old_sections, old_audit_rows = read_results(results_path)
     figures = []
     text = ("# Verification results (generated)\n\nWritten by `scripts/verification/make_figures.py`; "
             "docs/verification.md discusses them.\n\n")
     for title, needed, figure, tables in SECTIONS:
         if not all(n in runs for n in needed):
-            print(f"skipping {title}: missing runs", file=sys.stderr)
+            if title in old_sections:
+                print(f"keeping {title} from {os.path.relpath(results_path, ROOT)}", file=sys.stderr)
+                text += old_sections[title]
+            else:
+                print(f"skipping {title}: missing runs", file=sys.stderr)
             continue
         figure(runs, figures)
         text += f"## {title}\n\n" + tables(runs) + "\n"
-    text += "## Every run: energy audit and cost\n\n" + audit_table(runs)
-    with open(os.path.join(FIGURES, "verif_results.md"), "w") as f:
+    text += "## Every run: energy audit and cost\n\n" + audit_table(runs, old_audit_rows)
+    with open(results_path, "w") as f:
         f.write(text)
     print("figures:", ", ".join(figures))
 

@@ -21,7 +21,7 @@ inline BoundaryCondition wall(const std::string& tag) {
   return condition;
 }
 
-/// A shock tube on [0,1]x[0,0.1], nx x 4 zones, walls all round (VERIFICATION problem 1
+/// A shock tube on [0,1]x[0,0.1], nx x 4 zones, walls all round (docs/verification.md §1
 /// for the default states).
 inline Problem shock_tube(int nx, double t_end, double rho_left = 1.0, double p_left = 1.0,
                           double rho_right = 0.125, double p_right = 0.1, double gamma = 1.4) {

@@ -1,4 +1,4 @@
-// The bad-input catalogue (issue 7): every case of cases.txt is run through the real
+// The bad-input catalogue (docs/robustness.md §1): every case of cases.txt is run through the real
 // `stagger check` and `stagger run` binaries. Each must fail cleanly: exit status 1 (not a
 // signal, not a hang), exactly one `stagger: error:` line on stderr that holds the expected
 // text, and the same line from both commands. Repair cases exit 0 with a note; run-only

@@ -1,4 +1,4 @@
-// High explosives (issue 5): the paper's planar Comp B detonation (apps/scenes/detonation.toml,
+// High explosives (docs/solids.md §3): the paper's planar Comp B detonation (apps/scenes/detonation.toml,
 // cm-g-us) on coarse meshes against the CJ + Taylor-wave solution (verify.hpp CJDetonation),
 // the programmed burn's fraction, and the HE slab driving a copper plate (he_plate.toml).
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // Second order in space and time on a smooth flow with mesh motion: the Taylor-Green
-// vortex with its energy source (VERIFICATION problem 3b), and Noh on the polar mesh
+// vortex with its energy source (docs/verification.md §5), and Noh on the polar mesh
 // (radial symmetry to round-off with the edge viscosity).
 #include <gtest/gtest.h>
 

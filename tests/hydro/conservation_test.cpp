@@ -1,5 +1,5 @@
 // Exact conservation: total energy (with boundary work) and momentum to round-off, and
-// exact preservation of uniform states (NUMERICS sections 3, 4, 9).
+// exact preservation of uniform states (docs/algorithm.md §1, §10, §11).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -33,7 +33,8 @@ inline void walls(Problem& p, std::initializer_list<const char*> tags) {
   }
 }
 
-// Sod (VERIFICATION problem 1) on nx x 5, defaults of NUMERICS (Q = 0 as the prototype).
+// Sod (docs/verification.md §1) on nx x 5 with the defaults of the prototype's runs (Q = 0;
+// docs/algorithm.md §16.1).
 inline Problem sod_problem(int nx, double t_end = 0.2) {
   Problem p = gas_problem(rectangle_mesh(1.0, 0.1, nx, 5), 1.4, t_end);
   RegionSetup r;

@@ -1,4 +1,4 @@
-// Saltzman piston on the skewed mesh (VERIFICATION problem 8): runs to t = 0.6 with the
+// Saltzman piston on the skewed mesh (docs/verification.md §4): runs to t = 0.6 with the
 // paper's bulk q; shock at 4t/3, density 4 behind it.
 #include <gtest/gtest.h>
 

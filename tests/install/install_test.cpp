@@ -1,5 +1,5 @@
 // `cmake --install` into a temporary prefix, then apps/examples/embed configured and built
-// against it with find_package(Stagger), run, and its output checked (issue 9).
+// against it with find_package(Stagger), run, and its output checked (docs/api.md).
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -90,7 +90,7 @@ TEST_F(Install, EmbeddingExampleBuildsAgainstTheInstalledPackageAndSolvesSod) {
   ASSERT_TRUE(values.count("L1_density") && values.count("energy_audit")) << output;
   const double l1 = std::stod(values.at("L1_density"));
   const double audit = std::stod(values.at("energy_audit"));
-  // 200 x 5 zones at t = 0.2 gives L1 ~ 2.9e-3 (VERIFICATION problem 1); the audit is round-off.
+  // 200 x 5 zones at t = 0.2 gives L1 ~ 2.9e-3 (docs/verification.md §1); the audit is round-off.
   EXPECT_GT(l1, 1e-4) << output;
   EXPECT_LT(l1, 5e-3) << output;
   EXPECT_LT(std::abs(audit), 1e-12) << output;

@@ -1,5 +1,5 @@
 // Rigid rotation of a pre-stressed zone with discretely rigid kinematics (docs/algorithm.md
-// §7), through the same stress kernels and the same predictor-corrector sequence as the step
+// §7.1), through the same stress kernels and the same predictor-corrector sequence as the step
 // (steps 3 and 8 of docs/algorithm.md §1).
 #include <gtest/gtest.h>
 
@@ -81,8 +81,7 @@ TEST(RigidRotation, RateFormIsSecondOrderAsMeasuredByThePrototype) {
   const Rotation r100 = quarter_turn(100, false), r200 = quarter_turn(200, false);
   std::printf("rate form: error %.3e / %.3e, invariant drift %.3e / %.3e (100 / 200 steps)\n", r100.max_error,
               r200.max_error, r100.invariant_drift, r200.invariant_drift);
-  // The prototype's figures, reproduced by this code (docs/solids.md, rigid rotation table):
-  // 1.9e-4 and 4.8e-5; sqrt(S:S) drifts 2.3e-6 at 100 steps. The orders are the method's.
+  // The prototype's anchors (docs/algorithm.md §7.1, §16.2): 1.9e-4 and 4.8e-5; sqrt(S:S) drifts 2.3e-6 at 100 steps.
   EXPECT_NEAR(r100.max_error, 1.9e-4, 0.2e-4);
   EXPECT_NEAR(std::log2(r100.max_error / r200.max_error), 2.0, 0.1);
   EXPECT_NEAR(r100.invariant_drift, 2.3e-6, 0.3e-6);

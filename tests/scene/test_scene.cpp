@@ -264,18 +264,47 @@ TEST_F(SceneFile, TimeDependentBoundaryVelocity) {
 }
 
 TEST_F(SceneFile, TransformMovesThePoints) {
-  const stagger::Scene scene =
+  const stagger::Scene plain = stagger::load_scene(write(base_scene));
+  const stagger::Scene skewed =
       stagger::load_scene(write(edit("ny = 2", "ny = 2\ntransform = { x = \"x + (0.1 - y) * sin(pi * x)\" }")));
-  const auto& mesh = scene.problem.mesh;
-  bool moved = false;
-  for (stagger::Index p = 0; p < mesh.num_points(); ++p) {
-    EXPECT_GE(mesh.x[p], -1e-12);
-    EXPECT_LE(mesh.x[p], 1 + 1e-12);
-    // Points on y = 0 inside (0, 1) move right by 0.1 sin(pi x0).
-    if (mesh.y[p] == 0 && mesh.x[p] > 0.2 && mesh.x[p] < 0.9) moved = true;
+  const auto& a = plain.problem.mesh;
+  const auto& b = skewed.problem.mesh;
+  ASSERT_EQ(a.num_points(), b.num_points());
+  EXPECT_EQ(b.num_zones(), 20);
+  // Every point is the image of the same point of the untransformed mesh: x moves by
+  // (0.1 - y) sin(pi x), y stays. Interior points of the bottom and middle rows move.
+  int moved = 0;
+  for (stagger::Index p = 0; p < a.num_points(); ++p) {
+    EXPECT_NEAR(b.x[p], a.x[p] + (0.1 - a.y[p]) * std::sin(M_PI * a.x[p]), 1e-14) << "point " << p;
+    EXPECT_EQ(b.y[p], a.y[p]) << "point " << p;
+    if (std::abs(b.x[p] - a.x[p]) > 1e-3) ++moved;
   }
-  EXPECT_TRUE(moved);
-  EXPECT_EQ(mesh.num_zones(), 20);
+  EXPECT_EQ(moved, 9 + 9);  // x0 = 0.1 ... 0.9 on y = 0 and y = 0.05; the top row y = 0.1 stays
+}
+
+// The Saltzman scene end to end: its mesh is the skewed one of docs/verification.md §4,
+// x = x0 + (0.1 - y0) sin(pi x0), not the logical 100 x 10 grid (which would make the problem
+// one-dimensional and hide the mesh imprint the scene exists to test).
+TEST_F(SceneFile, SaltzmanSceneHasTheSkewedMesh) {
+  const stagger::Scene scene = stagger::load_scene(std::string(STAGGER_SOURCE_DIR) + "/apps/scenes/saltzman.toml");
+  const auto& mesh = scene.problem.mesh;
+  ASSERT_EQ(mesh.num_zones(), 1000);
+  ASSERT_EQ(mesh.num_points(), 101 * 11);
+  std::multiset<long> bottom, top;  // x in units of 1e-9, rows y = 0 and y = 0.1
+  for (stagger::Index p = 0; p < mesh.num_points(); ++p) {
+    const long key = std::lround(mesh.x[p] * 1e9);
+    if (mesh.y[p] == 0) bottom.insert(key);
+    if (std::abs(mesh.y[p] - 0.1) < 1e-12) top.insert(key);
+  }
+  ASSERT_EQ(bottom.size(), 101u);
+  ASSERT_EQ(top.size(), 101u);
+  for (int i = 0; i <= 100; ++i) {
+    const double x0 = i / 100.0;
+    EXPECT_EQ(bottom.count(std::lround((x0 + 0.1 * std::sin(M_PI * x0)) * 1e9)), 1u) << "bottom, x0 = " << x0;
+    EXPECT_EQ(top.count(std::lround(x0 * 1e9)), 1u) << "top, x0 = " << x0;
+  }
+  // The logical point x0 = 0.5 of the bottom row moved to 0.6.
+  EXPECT_EQ(bottom.count(std::lround(0.5 * 1e9)), 0u);
 }
 
 TEST_F(SceneFile, PerturbMovesInteriorPointsOnly) {

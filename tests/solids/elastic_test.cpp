@@ -1,4 +1,4 @@
-// Smooth elastic behaviour (issue 4): the paper's manufactured accuracy test (observed order),
+// Smooth elastic behaviour (docs/solids.md §4-6): the paper's manufactured accuracy test (observed order),
 // small-amplitude longitudinal and shear waves (their speeds), and the rigid rotation of a
 // pre-stressed block driven by discretely rigid kinematics (objective stress).
 #include <gtest/gtest.h>
@@ -55,8 +55,8 @@ AccuracyRun run_accuracy(int n) {
 }  // namespace
 
 // apps/scenes/accuracy.toml at N = 20, 40, 80 over one full period of the translation
-// (t = 1e-4 s: 110, 220, 440 cycles, about 2 s in all). The prototype of NUMERICS.md measured
-// L2_density = 4.53, 1.13, 0.283 (order 2.00).
+// (t = 1e-4 s: 110, 220, 440 cycles, about 2 s in all). The prototype measured
+// L2_density = 4.53, 1.13, 0.283 (order 2.00; a regression anchor, docs/algorithm.md §16.2).
 TEST(AccuracyTest, DensityAndStressConvergeAtSecondOrder) {
   std::vector<AccuracyRun> runs;
   for (int n : {20, 40, 80}) {
@@ -118,7 +118,7 @@ double standing_wave_period(int nx, bool shear, double t_end) {
 
 }  // namespace
 
-// Longitudinal: C_L = sqrt(a0^2 + 4 mu / (3 rho0)) (NUMERICS section 6 with p = 0 at rho0).
+// Longitudinal: C_L = sqrt(a0^2 + 4 mu / (3 rho0)) (docs/algorithm.md §3 with p = 0 at rho0).
 TEST(ElasticWaves, LongitudinalWaveTravelsAtTheElasticSpeedWithSecondOrderError) {
   const double c_l = std::sqrt(3940.0 * 3940.0 + 4.0 / 3.0 * 45e9 / 8930.0);
   std::vector<double> error;
@@ -146,11 +146,11 @@ TEST(ElasticWaves, ShearWaveTravelsAtTheShearSpeedWithSecondOrderError) {
   EXPECT_GT(std::abs(error[1] / error[2]), 3.0);
 }
 
-// ---- rigid rotation (NUMERICS section 4, "done right") ----
+// ---- rigid rotation (docs/algorithm.md §7.1) ----
 
 namespace {
 
-// The discretely rigid motion of NUMERICS section 4, x^{n+1} = C x^n with the Cayley rotation
+// The discretely rigid motion of docs/algorithm.md §7.1, x^{n+1} = C x^n with the Cayley rotation
 // C = (I - A)^{-1} (I + A), A = dt Omega / 2, and v^n = Omega x^n, is produced by the scheme
 // itself when every point feels the centripetal force that the step needs: the momentum
 // update v^{n+1} = v^n + dt a(x^{n+1/2}) gives v^{n+1} = Omega C x^n exactly when
@@ -256,8 +256,8 @@ TEST(RigidRotation, ObjectiveUpdateKeepsStressInvariantsToRoundOff) {
 }
 
 // The paper's rate form (the default) integrates the Jaumann terms with the midpoint rule: a
-// second-order phase error and a small invariant drift. NUMERICS.md section 4 (measured on the
-// same block): 1.9e-4 at 100 steps per quarter turn, 4.8e-5 at 200; drift 2.3e-6 at 100.
+// second-order phase error and a small invariant drift. The prototype's figures (docs/algorithm.md §7.1,
+// measured on the same block): 1.9e-4 at 100 steps per quarter turn, 4.8e-5 at 200; drift 2.3e-6 at 100.
 TEST(RigidRotation, RateFormRotatesStressWithSecondOrderError) {
   const RotationResult a = rotate_block(100, StressUpdate::rate), b = rotate_block(200, StressUpdate::rate);
   std::printf("[ numbers  ] rate form: 100 steps %.3e (drift %.3e), 200 steps %.3e (drift %.3e)\n", a.stress_error,

@@ -1,4 +1,4 @@
-// Elastic-plastic solids (issue 4): the copper piston's two waves, the beryllium shell's
+// Elastic-plastic solids (docs/solids.md §1-2): the copper piston's two waves, the beryllium shell's
 // stopping radius and symmetry, and the energy audit at round-off in both.
 #include <gtest/gtest.h>
 

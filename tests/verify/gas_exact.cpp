@@ -119,12 +119,12 @@ TEST(NohSolution, SatisfiesRankineHugoniotAtTheShock) {
   EXPECT_NEAR(noh.state(0.5, t).density, 1.0 + 0.6 / 0.5, 1e-14);
 }
 
-// Kamm & Timmes (LA-UR-07-2849) and VERIFICATION.md: alpha = 0.98407 (cylindrical) and
+// Kamm & Timmes (LA-UR-07-2849): alpha = 0.98407 (cylindrical) and
 // 0.851072 (spherical: E = 0.851072 gives R = 1 at t = 1) for gamma = 1.4.
 TEST(SedovSolution, AlphaMatchesTheLiterature) {
   EXPECT_NEAR(stagger::SedovSolution(1.4, 2).alpha(), 0.98407, 1e-4);
   EXPECT_NEAR(stagger::SedovSolution(1.4, 3).alpha(), 0.851072, 2e-6);
-  // VERIFICATION problem 7: E_plane = 4 * 0.244816 gives R about 1.0 at t = 1.
+  // docs/verification.md §3: E_plane = 4 * 0.244816 gives R about 1.0 at t = 1.
   const stagger::SedovSolution sedov(1.4, 2, 1.0, 4 * 0.244816);
   EXPECT_NEAR(sedov.shock_radius(1.0), 1.0, 2e-3);
   EXPECT_NEAR(sedov.shock_radius(0.25), 0.5 * sedov.shock_radius(1.0), 1e-14);

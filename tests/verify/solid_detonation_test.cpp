@@ -13,7 +13,7 @@ using stagger::CJDetonation;
 const stagger::Jwl kJwl{5.242, 0.07678, 4.2, 1.1, 0.34, 1.712};
 constexpr double kE0 = 0.085;  // Mbar cc/cc
 
-// JWL p(V, E) and c^2(V, E), E = rho0 e, written out again from NUMERICS.md section 8.
+// JWL p(V, E) and c^2(V, E), E = rho0 e, written out again from docs/algorithm.md §3.
 double jwl_pressure(double v, double energy) {
   const auto& j = kJwl;
   return j.A * (1 - j.omega / (j.R1 * v)) * std::exp(-j.R1 * v) + j.B * (1 - j.omega / (j.R2 * v)) * std::exp(-j.R2 * v) +

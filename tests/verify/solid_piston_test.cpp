@@ -13,7 +13,7 @@ using stagger::ElasticPlasticPiston;
 using stagger::PistonParameters;
 using stagger::SolidState;
 
-// Mie-Grueneisen p(rho, e), written out again from NUMERICS.md section 8 (independent check).
+// Mie-Grueneisen p(rho, e), written out again from docs/algorithm.md §3 (independent check).
 double mg_pressure(const stagger::MieGruneisen& m, double rho, double e) {
   const double eta = 1.0 - m.rho0 / rho;
   const double strain = m.a0 * eta / (1.0 - m.s * eta);
@@ -50,7 +50,7 @@ TEST(ElasticPlasticPiston, StatesObeyTheMieGruneisenEos) {
   const auto& eos = piston.parameters().eos;
   for (const SolidState* s : {&piston.initial_state(), &piston.elastic_state(), &piston.plastic_state()})
     EXPECT_NEAR(s->pressure, mg_pressure(eos, s->density, s->energy), 1e-9 * std::abs(s->pressure));
-  EXPECT_NEAR(piston.initial_state().energy, 5.5991, 1e-4);  // NUMERICS.md section 8
+  EXPECT_NEAR(piston.initial_state().energy, 5.5991, 1e-4);  // docs/algorithm.md §3.1
 }
 
 TEST(ElasticPlasticPiston, ShockedStatesSitOnTheYieldSurface) {

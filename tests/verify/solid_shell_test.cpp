@@ -50,7 +50,10 @@ TEST(HowellBallShell, ShellAreaIsConserved) {
 
 TEST(HowellBallShell, StopsNearThePrototypeRadii) {
   const HowellBallShell shell;
-  // Prototype of NUMERICS.md (compressible, elastic-plastic): 49.958 / 78.080 mm at 130 us.
+  // The compressible elastic-plastic scheme stops at 49.958 / 78.080 mm at 130 us (the prototype's
+  // figures, docs/algorithm.md §16.2, which this code reproduces: docs/verification.md §8). The
+  // incompressible rigid-plastic analytic model differs from them by its model error (0.04 mm);
+  // 1 mm bounds that and catches a wrong analytic solution.
   std::printf("[ numbers  ] stopping radii %.6f %.6f mm at %.6f us\n", 1e3 * shell.inner_stopping_radius(),
               1e3 * shell.outer_stopping_radius(), 1e6 * shell.stopping_time());
   EXPECT_NEAR(shell.inner_stopping_radius(), 0.049958, 1e-3);

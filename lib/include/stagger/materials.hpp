@@ -1,7 +1,7 @@
 #pragma once
 /// @file materials.hpp
 /// Material models: equations of state (pointwise p(rho, e) and c^2(rho, e)), strength
-/// (Wilkins hypo-elastic, von Mises) and programmed burn. NUMERICS.md section 8.
+/// (Wilkins hypo-elastic, von Mises) and programmed burn. docs/algorithm.md §3, §7, §8.
 #include <array>
 #include <optional>
 #include <string>
@@ -37,7 +37,7 @@ using EquationOfState = std::variant<IdealGas, MieGruneisen, Jwl>;
 /// Elastic-perfectly-plastic strength: shear modulus mu and yield stress Y (von Mises).
 struct Strength {
   double shear_modulus = 0;  ///< mu, >= 0
-  double yield_stress = 0;   ///< Y (sqrt(3/2 S:S) <= Y), >= 0
+  double yield_stress = 0;   ///< Y (sqrt(3/2 S:S) <= Y), > 0 (strength_option_table())
 };
 
 /// Programmed burn (LS-DYNA style): lighting time = distance to the nearest detonator

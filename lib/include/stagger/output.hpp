@@ -75,7 +75,7 @@ struct RunSummary {
 };
 
 /// Writes one CSV row per zone, in mesh order: zone, region (name), x, y (centre = vertex
-/// average, NUMERICS section 1), r (= sqrt(x^2 + y^2)), area, density, pressure,
+/// average, docs/algorithm.md §2), r (= sqrt(x^2 + y^2)), area, density, pressure,
 /// specific_internal_energy, velocity_x, velocity_y (mean of the zone's point velocities),
 /// artificial_viscosity, sound_speed, then deviatoric_stress_xx/yy/xy, von_mises and
 /// plastic_strain when the simulation has strength, and burn_fraction when it has a burn.

@@ -66,16 +66,17 @@ struct BoundaryCondition {
 
 /// Artificial viscosity: zone-centred bulk q, or the edge-centred viscosity with limiter.
 enum class Viscosity { bulk, edge };
-/// Hourglass control (NUMERICS.md section 7): the paper's viscosity on the mode
+/// Hourglass control (docs/algorithm.md §6): the paper's viscosity on the mode
 /// Gamma = (1,-1,1,-1), or the Flanagan-Belytschko projection (better on distorted quads).
 enum class Hourglass { gamma, flanagan_belytschko };
-/// Deviatoric stress update (NUMERICS.md section 4): the paper's rate form, or the objective
+/// Deviatoric stress update (docs/algorithm.md §7): the paper's rate form, or the objective
 /// incremental update S <- R S R^T (Hughes-Winget rotation).
 enum class StressUpdate { rate, objective };
 
-/// Numerical options; defaults are NUMERICS.md's.
+/// Numerical options (a scene's [numerics]). Ranges, units and meanings: numerics_option_table()
+/// in option_table.hpp, which the scene reader, validate() and docs/scenes.md share.
 struct HydroOptions {
-  double cfl = 0.15;                 ///< c_t in (0, 0.5]... up to the documented maximum
+  double cfl = 0.15;                 ///< c_t, in (0, 1)
   Viscosity viscosity = Viscosity::bulk;
   double q1 = 1.5, q2 = 0.06;        ///< bulk q (quadratic, linear)
   double edge_c1 = 0.5, edge_c2 = 1.0;  ///< edge viscosity (linear, quadratic)
@@ -89,14 +90,14 @@ struct HydroOptions {
   double dt_init = 0;                ///< 0 = the CFL value at t = 0
   double dt_max = 0;                 ///< 0 = none
   double dt_min = 0;                 ///< 0 = 1e-8 t_end
-  int max_retries = 3;               ///< halvings of dt for a tangled step
-  /// Treat a non-positive median-mesh corner area as tangling (NUMERICS section 5 step 9).
+  int max_retries = 3;               ///< halvings of dt for a tangled step, in [0, 30]
+  /// Treat a non-positive median-mesh corner area as tangling (docs/algorithm.md §9).
   /// A zone whose vertex-average centre crosses a reflex vertex (the Sedov hot corner on a
   /// Cartesian mesh) trips it while its area is still positive; false checks zone areas only.
   bool check_corner_areas = true;
 };
 
-/// Manufactured-solution source terms (NUMERICS section 9).
+/// Manufactured-solution source terms (docs/algorithm.md §1 steps 3, 4 and 7).
 struct Sources {
   /// Momentum source per unit volume (force density) at (x, y, t): point force V_p s.
   std::function<std::array<double, 2>(double x, double y, double t)> momentum;
@@ -115,7 +116,7 @@ struct Problem {
   std::vector<BoundaryCondition> boundaries; ///< by tag
   std::vector<EnergyDeposit> deposits;       ///< point energy sources at t = 0 (Sedov)
   std::optional<Sources> sources;            ///< manufactured-solution sources, if any
-  HydroOptions options;                      ///< numerics (NUMERICS.md defaults)
+  HydroOptions options;                      ///< numerics (defaults: docs/scenes.md [numerics])
   double t_end = 0;                          ///< end time, > 0
   /// Checks names, ranges and completeness; throws stagger::Error with the offending item.
   void validate() const;

@@ -1,7 +1,7 @@
 #pragma once
 /// @file remap.hpp
 /// The ALE hook: an optional remap phase called after each Lagrangian step. The Lagrangian
-/// phase does not know whether one exists (NUMERICS.md section 10).
+/// phase does not know whether one exists (docs/algorithm.md §13).
 #include <span>
 
 #include "stagger/mesh.hpp"

@@ -26,6 +26,9 @@ struct RunControl {
   bool checkpoints = true;
   bool progress = false;               ///< a progress line on stderr
   Reference reference;                 ///< errors/diagnostics for summary.json (may be empty)
+  /// Checks the ranges of output_option_table() (option_table.hpp); throws stagger::Error
+  /// naming the option. run() and resume() call it.
+  void validate() const;
 };
 
 /// The outcome of run() / resume().

@@ -3,6 +3,7 @@
 /// Scene files (TOML) translated into a Problem and a RunControl. See docs/scenes.md.
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "stagger/problem.hpp"
@@ -10,12 +11,43 @@
 
 namespace stagger {
 
+/// Parameters of the gas references, which verify.hpp takes as plain arguments.
+struct ShockTubeReference {
+  GasState left, right;  ///< states left and right of x0
+  double gamma = 1.4, x0 = 0.5;
+};
+struct NohReference {
+  double gamma = 5.0 / 3.0, density = 1.0, speed = 1.0;
+};
+struct SedovReference {
+  double gamma = 1.4, density = 1.0;
+  double energy_quarter = 0.244816;  ///< the energy deposited in the quarter plane
+};
+struct SaltzmanReference {
+  double piston_speed = 1.0, gamma = 5.0 / 3.0, density = 1.0;
+};
+struct TaylorGreenReference {
+  double p0 = 1.0;
+};
+
+/// What a scene's [verification] resolved: the reference's name and its parameters, with
+/// the defaults of verify.hpp, the scene's material constants and --set overrides applied.
+/// RunControl::reference is the same reference as error norms; tools that need the exact
+/// fields themselves (stagger-profile) build the solution classes of verify.hpp from this.
+struct VerificationSetup {
+  std::string name;  ///< "shock_tube", ..., "accuracy"; empty: the scene has no [verification]
+  std::variant<std::monostate, ShockTubeReference, NohReference, SedovReference, SaltzmanReference,
+               TaylorGreenReference, PistonParameters, ShellParameters, DetonationParameters, AccuracyParameters>
+      parameters;
+};
+
 /// A scene file read and resolved: what `stagger run` passes to Simulation and run().
 struct Scene {
   std::string file;        ///< path of the scene file
   Problem problem;         ///< the set-up, ready for Simulation (move it in)
   RunControl control;      ///< output settings and the reference solution, for run()
   std::vector<std::string> notes;  ///< repairs made on import (e.g. reoriented zones)
+  VerificationSetup verification;  ///< the [verification] reference and its parameters
 };
 
 /// Reads, meshes and validates a scene. `overrides` are ("section.key", "value") pairs

@@ -1,6 +1,6 @@
 #pragma once
 /// @file simulation.hpp
-/// A running problem: the compatible staggered Lagrangian step (NUMERICS.md section 5),
+/// A running problem: the compatible staggered Lagrangian step (docs/algorithm.md §1),
 /// time-step control, boundary conditions, the energy audit, and read-only views of the state.
 #include <array>
 #include <functional>

@@ -1,7 +1,7 @@
 #pragma once
 /// @file verify.hpp
 /// Exact and analytic solutions of the verification problems, and error norms.
-/// VERIFICATION.md defines the norms: area-weighted means over the compared zones.
+/// docs/verification.md §11 defines the norms: area-weighted means over the compared zones.
 #include <array>
 #include <functional>
 #include <span>
@@ -65,18 +65,18 @@ Reference shock_tube_reference(GasState left, GasState right, double gamma, doub
 // Geometry and norms on an explicit geometry (topology of `mesh`, positions x, y), so that
 // they can be used and tested without a Simulation.
 
-/// Zone centres (vertex average, NUMERICS section 1) for positions x, y.
+/// Zone centres (vertex average, docs/algorithm.md §2) for positions x, y.
 std::array<std::vector<double>, 2> zone_centres(const Mesh& mesh, std::span<const double> x,
                                                 std::span<const double> y);
-/// Zone areas (shoelace, NUMERICS section 2) for positions x, y.
+/// Zone areas (shoelace, docs/algorithm.md §2) for positions x, y.
 std::vector<double> zone_areas(const Mesh& mesh, std::span<const double> x, std::span<const double> y);
 /// Median-dual area of every point: the sum of its corner areas, a corner being the
 /// quadrilateral (point, mid-edge to the next vertex, zone centre, mid-edge to the previous
-/// vertex) of NUMERICS section 1.
+/// vertex) of docs/algorithm.md §2.
 std::vector<double> point_dual_areas(const Mesh& mesh, std::span<const double> x, std::span<const double> y);
 
 /// Appends L1_<name>, L2_<name>, Linf_<name> of the differences (their absolute values are
-/// used) weighted by `weights` (VERIFICATION.md "How errors are measured"). Entries with
+/// used) weighted by `weights` (docs/verification.md §11). Entries with
 /// weight <= 0 are skipped by L1/L2 but not by Linf. Throws stagger::Error on size mismatch
 /// or when the total weight is not positive.
 void append_norms(std::span<const double> weights, std::span<const double> differences,
@@ -181,7 +181,7 @@ private:
 /// `peak_density_exact` (rho0 (gamma + 1)/(gamma - 1)).
 Reference sedov_reference(double gamma = 1.4, double rho0 = 1.0, double energy_quarter = 0.244816);
 
-/// Saltzman piston (VERIFICATION problem 8): piston at x = u t from x = 0 into gas of density
+/// Saltzman piston (docs/verification.md §4): piston at x = u t from x = 0 into gas of density
 /// rho0 at rest, strong shock at x_s = (gamma + 1)/2 u t, density rho0 (gamma+1)/(gamma-1)
 /// behind (4 for gamma = 5/3). Errors: L1/L2/Linf_density at the zone centres. Diagnostics:
 /// `shock_position` (mean front_crossing in x through the half-way density), `shock_position_exact`,
@@ -215,7 +215,7 @@ struct SolidState {
   double density = 0, velocity = 0, pressure = 0, stress_xx = 0, energy = 0;
 };
 
-/// The copper elastic-plastic piston (VERIFICATION.md problem 4; the set-up of Maire et al.,
+/// The copper elastic-plastic piston (docs/verification.md §7; the set-up of Maire et al.,
 /// "A nominally second-order cell-centered Lagrangian scheme for simulating elastic-plastic
 /// flows on two-dimensional unstructured grids", JCP 235, 2013, section 6; Wilkins, "Calculation
 /// of elastic-plastic flow", Methods Comput. Phys. 3, 1964).
@@ -228,7 +228,7 @@ struct PistonParameters {
 };
 
 /// Exact two-wave solution of the piston problem for the continuum that the scheme
-/// discretises (NUMERICS.md sections 3-4, 8): hypo-elastic S_xx = (4 mu / 3) ln(rho0 / rho)
+/// discretises (docs/algorithm.md §3, §7): hypo-elastic S_xx = (4 mu / 3) ln(rho0 / rho)
 /// along the elastic path (the rate equation integrated in uniaxial strain), von Mises
 /// yield at |S_xx| = 2Y/3, Mie-Grueneisen pressure. Both waves are shocks satisfying the
 /// Rankine-Hugoniot conditions for mass, momentum and total energy with the normal stress
@@ -261,7 +261,7 @@ private:
 /// plastic_pressure_exact, plastic_density_exact.
 Reference piston_reference(const PistonParameters& parameters = {});
 
-/// Howell & Ball's beryllium shell (JCP 175, 2002; VERIFICATION.md problem 5).
+/// Howell & Ball's beryllium shell (JCP 175, 2002; docs/verification.md §8).
 struct ShellParameters {
   double inner_radius = 0.08, outer_radius = 0.1;
   double velocity = 417.1;  ///< V0: initial radial velocity -V0 Ri / r
@@ -362,7 +362,7 @@ private:
 /// the zones with centre x - x0 < D t / 4) and plateau_pressure_exact.
 Reference detonation_reference(const DetonationParameters& parameters = {});
 
-/// The paper's smooth accuracy test (section 5.3 with NUMERICS.md errata): on the periodic
+/// The paper's smooth accuracy test (section 5.3 with the errata of docs/algorithm.md §15): on the periodic
 /// unit square, with X = x - a t, Y = y - a t,
 ///   rho = rho0 (1 - 0.1 sin 2 pi X - 0.1 cos 2 pi Y), u = v = a, e = e0,
 ///   S_xx = s1 (cos 2 pi X - sin 2 pi Y), S_yy = -s1 (sin 2 pi X - cos 2 pi Y),

@@ -364,6 +364,7 @@ private:
 }  // namespace
 
 RunResult run(Simulation& simulation, const RunControl& control) {
+  control.validate();
   Driver driver(simulation, control);
   driver.prepare_directory();
   driver.start_fresh();
@@ -371,6 +372,7 @@ RunResult run(Simulation& simulation, const RunControl& control) {
 }
 
 RunResult resume(Simulation& simulation, const RunControl& control, const std::string& checkpoint) {
+  control.validate();
   Driver driver(simulation, control);
   driver.load_checkpoint(checkpoint);
   driver.prepare_directory();

@@ -1,5 +1,5 @@
 // Boundary conditions: walls and symmetry planes of any orientation, prescribed normal
-// velocity, applied pressure and periodic pairs (NUMERICS section 9).
+// velocity, applied pressure and periodic pairs (docs/algorithm.md §10).
 #include "hydro/boundary.hpp"
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 #pragma once
-// Boundary-condition set-up and application (NUMERICS section 9).
+// Boundary-condition set-up and application (docs/algorithm.md §10).
 #include <span>
 #include <vector>
 

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "stagger/error.hpp"
+#include "stagger/option_table.hpp"
 
 namespace stagger {
 
@@ -32,19 +33,10 @@ void require(bool condition, const std::string& message) {
 void validate_material(const Material& m) {
   const std::string where = "material '" + m.name + "': ";
   require(!m.name.empty(), "a material has no name");
-  if (const auto* g = std::get_if<IdealGas>(&m.eos)) {
-    require(g->gamma > 1.0, where + "ideal gas gamma must be > 1 (got " + std::to_string(g->gamma) + ")");
-  } else if (const auto* mg = std::get_if<MieGruneisen>(&m.eos)) {
-    require(mg->rho0 > 0 && mg->a0 > 0, where + "Mie-Gruneisen rho0 and a0 must be > 0");
-    require(mg->s >= 0 && mg->gamma0 >= 0, where + "Mie-Gruneisen s and Gamma0 must be >= 0");
-  } else if (const auto* j = std::get_if<Jwl>(&m.eos)) {
-    require(j->rho0 > 0 && j->R1 > 0 && j->R2 > 0 && j->omega > 0,
-            where + "JWL rho0, R1, R2 and omega must be > 0");
-  }
-  if (m.strength) {
-    require(m.strength->shear_modulus >= 0, where + "shear_modulus must be >= 0");
-    require(m.strength->yield_stress >= 0, where + "yield_stress must be >= 0");
-  }
+  if (const auto* g = std::get_if<IdealGas>(&m.eos)) ideal_gas_option_table().validate(*g, where);
+  if (const auto* mg = std::get_if<MieGruneisen>(&m.eos)) mie_gruneisen_option_table().validate(*mg, where);
+  if (const auto* j = std::get_if<Jwl>(&m.eos)) jwl_option_table().validate(*j, where);
+  if (m.strength) strength_option_table().validate(*m.strength, where + "strength.");
   if (m.burn) {
     require(m.burn->detonation_speed > 0, where + "burn detonation_speed must be > 0");
     require(!m.burn->points.empty() || m.burn->plane.has_value(),
@@ -57,17 +49,11 @@ void validate_material(const Material& m) {
 
 void Problem::validate() const {
   require(mesh.num_zones() > 0, "problem '" + name + "': the mesh has no zones");
-  require(std::isfinite(t_end) && t_end > 0, "problem '" + name + "': end time must be > 0 (got " +
-                                                  std::to_string(t_end) + ")");
-  const auto& o = options;
-  require(o.cfl > 0 && o.cfl < 1, "numerics: cfl must be in (0, 1) (got " + std::to_string(o.cfl) + ")");
-  require(o.q1 >= 0 && o.q2 >= 0, "numerics: q1 and q2 must be >= 0");
-  require(o.edge_c1 >= 0 && o.edge_c2 >= 0, "numerics: edge_c1 and edge_c2 must be >= 0");
-  require(o.hourglass_coefficient >= 0, "numerics: hourglass_coefficient must be >= 0");
-  require(o.volume_limit > 0 && o.volume_limit <= 1, "numerics: volume_limit must be in (0, 1]");
-  require(o.dt_growth >= 1, "numerics: dt_growth must be >= 1");
-  require(o.dt_init >= 0 && o.dt_max >= 0 && o.dt_min >= 0, "numerics: dt_init, dt_max, dt_min must be >= 0");
-  require(o.max_retries >= 0 && o.max_retries <= 30, "numerics: max_retries must be in [0, 30]");
+  // The ranges of the option tables (option_table.hpp), the same that the scene reader checks.
+  time_option_table().validate(*this, "problem '" + name + "': time.");
+  numerics_option_table().validate(options);
+  for (std::size_t k = 0; k < deposits.size(); ++k)
+    deposit_option_table().validate(deposits[k], "deposit[" + std::to_string(k) + "].");
 
   std::set<std::string> material_names;
   for (const auto& m : materials) {

@@ -31,7 +31,7 @@ void write_zone_csv(const std::string& path, const Simulation& simulation) {
   const auto vx = simulation.velocity_x();
   const auto vy = simulation.velocity_y();
 
-  // Zone centre = vertex average (NUMERICS section 1); velocity = mean of the zone's points
+  // Zone centre = vertex average (docs/algorithm.md §2); velocity = mean of the zone's points
   // (the staggered scheme has no zone velocity; this is for plotting only).
   std::vector<double> cx(nzones), cy(nzones), ux(nzones), uy(nzones);
   for (std::size_t z = 0; z < nzones; ++z) {
@@ -59,7 +59,7 @@ void write_zone_csv(const std::string& path, const Simulation& simulation) {
     const auto sxx = simulation.stress_xx(), syy = simulation.stress_yy(), sxy = simulation.stress_xy();
     von_mises.resize(nzones);
     for (std::size_t z = 0; z < nzones; ++z) {
-      // sqrt(3/2 S:S) with the out-of-plane S_zz = -(S_xx + S_yy) (NUMERICS section 4).
+      // sqrt(3/2 S:S) with the out-of-plane S_zz = -(S_xx + S_yy) (docs/algorithm.md §7).
       const double szz = -(sxx[z] + syy[z]);
       von_mises[z] = std::sqrt(1.5 * (sxx[z] * sxx[z] + syy[z] * syy[z] + szz * szz + 2.0 * sxy[z] * sxy[z]));
     }

@@ -1,4 +1,4 @@
-// summary.json, written by hand (no JSON dependency): the output contract of issue 2.
+// summary.json, written by hand (no JSON dependency): the output contract of docs/output.md.
 #include <string>
 
 #include "io/text_format.hpp"
@@ -27,7 +27,7 @@ void write_summary(const std::string& path, const Simulation& simulation, const 
   const auto momentum = simulation.momentum();
   const double zones = mesh.num_zones();
   const double cycles = static_cast<double>(simulation.cycle());
-  // VERIFICATION.md: zones x cycles / time of the time loop alone.
+  // docs/verification.md §11: zones x cycles / time of the time loop alone.
   const double rate = summary.loop_seconds > 0 ? zones * cycles / summary.loop_seconds : 0.0;
 
   std::string text = "{\n";

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "scene_internal.hpp"
+#include "stagger/option_table.hpp"
 
 namespace stagger {
 
@@ -19,16 +20,35 @@ const char* kind_name(BoundaryKind kind) {
   return "?";
 }
 
+// The EOS and its constants, named as in the scene (the option tables' echo).
 std::string eos_text(const EquationOfState& eos) {
-  std::ostringstream text;
-  if (const auto* gas = std::get_if<IdealGas>(&eos)) text << "ideal gas, gamma = " << gas->gamma;
+  if (const auto* gas = std::get_if<IdealGas>(&eos)) return "ideal gas, " + ideal_gas_option_table().echo(*gas);
   if (const auto* mg = std::get_if<MieGruneisen>(&eos))
-    text << "Mie-Gruneisen, rho0 = " << mg->rho0 << ", a0 = " << mg->a0 << ", Gamma0 = " << mg->gamma0
-         << ", s = " << mg->s;
-  if (const auto* jwl = std::get_if<Jwl>(&eos))
-    text << "JWL, A = " << jwl->A << ", B = " << jwl->B << ", R1 = " << jwl->R1 << ", R2 = " << jwl->R2
-         << ", omega = " << jwl->omega << ", rho0 = " << jwl->rho0;
-  return text.str();
+    return "Mie-Gruneisen, " + mie_gruneisen_option_table().echo(*mg);
+  if (const auto* jwl = std::get_if<Jwl>(&eos)) return "JWL, " + jwl_option_table().echo(*jwl);
+  return "?";
+}
+
+// "  " + the option table's echo, wrapped after a comma at about 100 columns.
+std::string echo_lines(const std::string& echo) {
+  std::string out = "  ";
+  std::size_t width = 2;
+  std::size_t start = 0;
+  while (start < echo.size()) {
+    std::size_t comma = echo.find(", ", start);
+    const std::string item = echo.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (width > 2 && width + item.size() + 2 > 100) {
+      out += ",\n  ";
+      width = 2;
+    } else if (width > 2) {
+      out += ", ";
+      width += 2;
+    }
+    out += item;
+    width += item.size();
+    start = comma == std::string::npos ? echo.size() : comma + 2;
+  }
+  return out + "\n";
 }
 
 }  // namespace
@@ -41,7 +61,7 @@ std::string describe(const Scene& scene) {
   std::ostringstream out;
   out.precision(6);
   out << "scene " << problem.name << " (" << scene.file << ")\n";
-  out << "  t_end = " << problem.t_end << "\n";
+  out << "  time: " << time_option_table().echo(problem) << "\n";
 
   const MeshQuality quality = mesh_quality(mesh);
   out << "mesh " << mesh.source << ": " << mesh.num_zones() << " zones (" << quality.quads << " quads, "
@@ -55,9 +75,7 @@ std::string describe(const Scene& scene) {
   out << "materials\n";
   for (const auto& material : problem.materials) {
     out << "  " << material.name << ": " << eos_text(material.eos) << "\n";
-    if (material.strength)
-      out << "    strength: shear modulus " << material.strength->shear_modulus << ", yield stress "
-          << material.strength->yield_stress << "\n";
+    if (material.strength) out << "    strength: " << strength_option_table().echo(*material.strength) << "\n";
     if (material.burn) {
       const Burn& burn = *material.burn;
       out << "    burn: D = " << burn.detonation_speed << ", " << burn.points.size() << " detonation point(s)"
@@ -100,38 +118,12 @@ std::string describe(const Scene& scene) {
     if (!found) out << "(none)";
     out << "\n";
   }
-  for (const auto& deposit : problem.deposits)
-    out << "energy deposit " << deposit.energy << " at (" << deposit.x << ", " << deposit.y << ")\n";
+  for (const auto& deposit : problem.deposits) out << "energy deposit: " << deposit_option_table().echo(deposit) << "\n";
   if (problem.sources) out << "manufactured source terms: on\n";
 
-  out << "numerics\n";
-  out << "  cfl " << options.cfl << ", viscosity ";
-  if (options.viscosity == Viscosity::bulk)
-    out << "bulk (q1 " << options.q1 << ", q2 " << options.q2 << ")";
-  else
-    out << "edge (c1 " << options.edge_c1 << ", c2 " << options.edge_c2 << ", limiter "
-        << (options.edge_limiter ? "on" : "off") << ")";
-  out << ", hourglass " << (options.hourglass == Hourglass::gamma ? "gamma" : "flanagan_belytschko") << " Q "
-      << options.hourglass_coefficient << "\n";
-  out << "  stress update " << (options.stress_update == StressUpdate::rate ? "rate" : "objective")
-      << ", predictor " << (options.fresh_predictor ? "fresh" : "lagged") << ", volume limit " << options.volume_limit
-      << ", dt growth " << options.dt_growth << ", dt_init " << options.dt_init << ", dt_max " << options.dt_max
-      << ", dt_min " << options.dt_min << ", max retries " << options.max_retries << "\n";
-
-  out << "output " << control.output_directory << "\n";
-  out << "  dumps " << (control.dumps ? "on" : "off");
-  if (control.dumps) {
-    if (control.dump_interval > 0)
-      out << " (every " << control.dump_interval << ")";
-    else
-      out << " (first and last)";
-  }
-  out << ", history every " << control.history_every << " cycle(s), checkpoints ";
-  if (control.checkpoints)
-    out << "every " << control.checkpoint_every_cycles << " cycles / " << control.checkpoint_every_seconds << " s";
-  else
-    out << "off";
-  out << ", reference " << (control.reference ? "yes" : "none") << "\n";
+  out << "numerics\n" << echo_lines(numerics_option_table().echo(options));
+  out << "output " << control.output_directory << ", reference " << (control.reference ? "yes" : "none") << "\n"
+      << echo_lines(output_option_table().echo(control));
   return out.str();
 }
 

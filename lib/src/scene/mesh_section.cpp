@@ -32,7 +32,7 @@ double uniform01(std::mt19937_64& generator) {
 }
 
 // Moves every interior point by up to `fraction` of its shortest incident edge in x and
-// y, reproducibly from `seed` (stress tests of issue 7). Boundary points stay.
+// y, reproducibly from `seed` (the stress tests of docs/robustness.md §2). Boundary points stay.
 void perturb_mesh(Mesh& mesh, double fraction, std::uint64_t seed, Section& section) {
   const Index npoints = mesh.num_points();
   std::vector<double> shortest(npoints, std::numeric_limits<double>::infinity());

@@ -97,30 +97,48 @@ SourceContext read_sources_section(Section& section, Problem& problem) {
 }
 
 void read_verification_section(Section& section, const Problem& problem, const SourceContext& sources,
-                               RunControl& control) {
+                               RunControl& control, VerificationSetup& setup) {
   const std::string reference = section.choice(
       "reference", {"shock_tube", "noh", "sedov", "saltzman", "taylor_green", "piston", "be_shell", "detonation", "accuracy"});
+  setup.name = reference;
   if (reference == "shock_tube") {
-    const GasState left = read_gas_state(section, "left"), right = read_gas_state(section, "right");
-    const double gamma = gas_gamma(section, problem);
-    const double x0 = section.number("x0");
-    control.reference = shock_tube_reference(left, right, gamma, x0);
+    ShockTubeReference parameters;
+    parameters.left = read_gas_state(section, "left");
+    parameters.right = read_gas_state(section, "right");
+    parameters.gamma = gas_gamma(section, problem);
+    parameters.x0 = section.number("x0");
+    control.reference = shock_tube_reference(parameters.left, parameters.right, parameters.gamma, parameters.x0);
+    setup.parameters = parameters;
   } else if (reference == "noh") {
-    const double gamma = gas_gamma(section, problem);
-    control.reference = noh_reference(gamma, positive(section, "density", 1.0), positive(section, "speed", 1.0));
+    NohReference parameters;
+    parameters.gamma = gas_gamma(section, problem);
+    parameters.density = positive(section, "density", parameters.density);
+    parameters.speed = positive(section, "speed", parameters.speed);
+    control.reference = noh_reference(parameters.gamma, parameters.density, parameters.speed);
+    setup.parameters = parameters;
   } else if (reference == "sedov") {
-    const double gamma = gas_gamma(section, problem);
+    SedovReference parameters;
+    parameters.gamma = gas_gamma(section, problem);
     double deposited = 0;
     for (const auto& deposit : problem.deposits) deposited += deposit.energy;
     if (!section.has("energy") && deposited == 0)
       section.fail("energy", "missing (the scene has no [[deposit]])", "write energy = 0.244816");
-    control.reference = sedov_reference(gamma, positive(section, "density", 1.0), positive(section, "energy", deposited));
+    parameters.density = positive(section, "density", parameters.density);
+    parameters.energy_quarter = positive(section, "energy", deposited);
+    control.reference = sedov_reference(parameters.gamma, parameters.density, parameters.energy_quarter);
+    setup.parameters = parameters;
   } else if (reference == "saltzman") {
-    const double gamma = gas_gamma(section, problem);
-    control.reference =
-        saltzman_reference(positive(section, "piston_speed", 1.0), gamma, positive(section, "density", 1.0));
+    SaltzmanReference parameters;
+    parameters.gamma = gas_gamma(section, problem);
+    parameters.piston_speed = positive(section, "piston_speed", parameters.piston_speed);
+    parameters.density = positive(section, "density", parameters.density);
+    control.reference = saltzman_reference(parameters.piston_speed, parameters.gamma, parameters.density);
+    setup.parameters = parameters;
   } else if (reference == "taylor_green") {
-    control.reference = taylor_green_reference(positive(section, "p0", 1.0));
+    TaylorGreenReference parameters;
+    parameters.p0 = positive(section, "p0", parameters.p0);
+    control.reference = taylor_green_reference(parameters.p0);
+    setup.parameters = parameters;
   } else if (reference == "piston") {
     const Material& material = reference_material(section, problem);
     PistonParameters parameters;
@@ -135,6 +153,7 @@ void read_verification_section(Section& section, const Problem& problem, const S
     } catch (const Error& failure) {
       section.fail("reference", failure.what());
     }
+    setup.parameters = parameters;
   } else if (reference == "be_shell") {
     const Material& material = reference_material(section, problem);
     ShellParameters parameters;
@@ -146,6 +165,7 @@ void read_verification_section(Section& section, const Problem& problem, const S
     if (!(parameters.outer_radius > parameters.inner_radius)) section.fail("outer_radius", "must exceed inner_radius");
     parameters.velocity = positive(section, "velocity", parameters.velocity);
     control.reference = be_shell_reference(parameters);
+    setup.parameters = parameters;
   } else if (reference == "detonation") {
     const Material& material = reference_material(section, problem);
     DetonationParameters parameters;
@@ -158,10 +178,12 @@ void read_verification_section(Section& section, const Problem& problem, const S
     } catch (const Error& failure) {
       section.fail("reference", failure.what());
     }
+    setup.parameters = parameters;
   } else {
     if (!sources.accuracy)
       section.fail("reference", "the accuracy reference needs [sources] kind = \"accuracy\" (its parameters are read there)");
     control.reference = accuracy_reference(*sources.accuracy);
+    setup.parameters = *sources.accuracy;
   }
   section.finish();
 }

@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "option_table_reader.hpp"
 #include "overrides.hpp"
 #include "scene_internal.hpp"
 #include "stagger/error.hpp"
@@ -113,42 +114,24 @@ void read_scene_section(Section& root, const std::string& file, Problem& problem
 Material read_material(Section& section) {
   Material material;
   material.name = section.string("name");
-  auto positive = [&](const char* key) {
-    const double value = section.number(key);
-    if (!(value > 0)) section.fail(key, "must be > 0, got " + show(value));
-    return value;
-  };
   const std::string eos = section.choice("eos", {"ideal_gas", "mie_gruneisen", "jwl"});
   if (eos == "ideal_gas") {
     IdealGas gas;
-    gas.gamma = section.number("gamma");
-    if (!(gas.gamma > 1)) section.fail("gamma", "must be > 1, got " + show(gas.gamma));
+    read_options(section, ideal_gas_option_table(), gas);
     material.eos = gas;
   } else if (eos == "mie_gruneisen") {
     MieGruneisen mg;
-    mg.rho0 = positive("rho0");
-    mg.a0 = positive("a0");
-    mg.gamma0 = section.number("gamma0");
-    mg.s = section.number("s");
-    if (!(mg.gamma0 >= 0)) section.fail("gamma0", "must be >= 0");
+    read_options(section, mie_gruneisen_option_table(), mg);
     material.eos = mg;
   } else {
     Jwl jwl;
-    jwl.A = section.number("A");
-    jwl.B = section.number("B");
-    jwl.R1 = positive("R1");
-    jwl.R2 = positive("R2");
-    jwl.omega = positive("omega");
-    jwl.rho0 = positive("rho0");
+    read_options(section, jwl_option_table(), jwl);
     material.eos = jwl;
   }
   if (section.has("min_energy")) material.min_energy = section.number("min_energy");
   if (auto strength = section.subtable("strength")) {
     Strength s;
-    s.shear_modulus = strength->number("shear_modulus");
-    s.yield_stress = strength->number("yield_stress");
-    if (!(s.shear_modulus >= 0)) strength->fail("shear_modulus", "must be >= 0");
-    if (!(s.yield_stress > 0)) strength->fail("yield_stress", "must be > 0", "use a very large value for an elastic material");
+    read_options(*strength, strength_option_table(), s);
     strength->finish();
     material.strength = s;
   }
@@ -352,60 +335,6 @@ void read_boundaries(Section& root, const Mesh& mesh, double t_end, Problem& pro
               "add one (type = \"free\" for a traction-free surface)");
 }
 
-void read_numerics(Section& section, HydroOptions& options) {
-  auto in_range = [&](const char* key, double fallback, double low, double high, bool low_open, bool high_open) {
-    const double value = section.number(key, fallback);
-    const bool ok = (low_open ? value > low : value >= low) && (high_open ? value < high : value <= high);
-    if (!ok) {
-      std::ostringstream range;
-      range << (low_open ? "(" : "[") << show(low) << ", " << show(high)
-            << (high_open ? ")" : "]");
-      section.fail(key, "must be in " + range.str() + ", got " + show(value));
-    }
-    return value;
-  };
-  const double inf = std::numeric_limits<double>::infinity();
-  options.cfl = in_range("cfl", options.cfl, 0, 1, true, true);
-  options.viscosity = section.choice("viscosity", {"bulk", "edge"}, "bulk") == "edge" ? Viscosity::edge : Viscosity::bulk;
-  options.q1 = in_range("q1", options.q1, 0, inf, false, true);
-  options.q2 = in_range("q2", options.q2, 0, inf, false, true);
-  options.edge_c1 = in_range("edge_c1", options.edge_c1, 0, inf, false, true);
-  options.edge_c2 = in_range("edge_c2", options.edge_c2, 0, inf, false, true);
-  options.edge_limiter = section.boolean("edge_limiter", options.edge_limiter);
-  options.hourglass = section.choice("hourglass", {"gamma", "flanagan_belytschko"}, "gamma") == "gamma"
-                          ? Hourglass::gamma
-                          : Hourglass::flanagan_belytschko;
-  options.hourglass_coefficient = in_range("hourglass_coefficient", options.hourglass_coefficient, 0, inf, false, true);
-  options.stress_update =
-      section.choice("stress_update", {"rate", "objective"}, "rate") == "rate" ? StressUpdate::rate : StressUpdate::objective;
-  options.fresh_predictor = section.boolean("fresh_predictor", options.fresh_predictor);
-  options.volume_limit = in_range("volume_limit", options.volume_limit, 0, 1, true, false);
-  options.dt_growth = in_range("dt_growth", options.dt_growth, 1, inf, false, true);
-  options.dt_init = in_range("dt_init", options.dt_init, 0, inf, false, true);
-  options.dt_max = in_range("dt_max", options.dt_max, 0, inf, false, true);
-  options.dt_min = in_range("dt_min", options.dt_min, 0, inf, false, true);
-  const long retries = section.integer("max_retries", options.max_retries);
-  if (retries < 0 || retries > 60) section.fail("max_retries", "must be in [0, 60]");
-  options.max_retries = static_cast<int>(retries);
-  options.check_corner_areas = section.boolean("check_corner_areas", options.check_corner_areas);
-  section.finish();
-}
-
-void read_output(Section& section, RunControl& control) {
-  control.dump_interval = section.number("dump_interval", control.dump_interval);
-  if (!(control.dump_interval >= 0)) section.fail("dump_interval", "must be >= 0 (0: first and last only)");
-  control.dumps = section.boolean("dumps", control.dumps);
-  const long every = section.integer("history_every", control.history_every);
-  if (every < 1 || every > 1000000000) section.fail("history_every", "must be >= 1");
-  control.history_every = static_cast<int>(every);
-  control.checkpoint_every_cycles = section.integer("checkpoint_every_cycles", control.checkpoint_every_cycles);
-  if (control.checkpoint_every_cycles < 0) section.fail("checkpoint_every_cycles", "must be >= 0 (0: never)");
-  control.checkpoint_every_seconds = section.number("checkpoint_every_seconds", control.checkpoint_every_seconds);
-  if (!(control.checkpoint_every_seconds >= 0)) section.fail("checkpoint_every_seconds", "must be >= 0 (0: never)");
-  control.checkpoints = section.boolean("checkpoints", control.checkpoints);
-  section.finish();
-}
-
 }  // namespace
 }  // namespace scene_detail
 
@@ -439,8 +368,7 @@ Scene load_scene(const std::string& path, const std::vector<std::pair<std::strin
 
   auto time = root.subtable("time");
   if (!time) root.fail("time", "missing: every scene needs [time] with end", "add [time] end = ...");
-  problem.t_end = time->number("end");
-  if (!(problem.t_end > 0)) time->fail("end", "must be > 0, got " + show(problem.t_end));
+  read_options(*time, time_option_table(), problem);
   time->finish();
 
   auto mesh = root.subtable("mesh");
@@ -461,20 +389,23 @@ Scene load_scene(const std::string& path, const std::vector<std::pair<std::strin
 
   for (auto& section : root.table_array("deposit")) {
     EnergyDeposit deposit;
-    deposit.x = section.number("x");
-    deposit.y = section.number("y");
-    deposit.energy = section.number("energy");
-    if (!(deposit.energy > 0)) section.fail("energy", "must be > 0");
+    read_options(section, deposit_option_table(), deposit);
     section.finish();
     problem.deposits.push_back(deposit);
   }
 
-  if (auto numerics = root.subtable("numerics")) read_numerics(*numerics, problem.options);
-  if (auto output = root.subtable("output")) read_output(*output, control);
+  if (auto numerics = root.subtable("numerics")) {
+    read_options(*numerics, numerics_option_table(), problem.options);
+    numerics->finish();
+  }
+  if (auto output = root.subtable("output")) {
+    read_options(*output, output_option_table(), control);
+    output->finish();
+  }
   SourceContext source_context;
   if (auto sources = root.subtable("sources")) source_context = read_sources_section(*sources, problem);
   if (auto verification = root.subtable("verification"))
-    read_verification_section(*verification, problem, source_context, control);
+    read_verification_section(*verification, problem, source_context, control, scene.verification);
   root.finish();
 
   try {

@@ -21,8 +21,8 @@ struct SourceContext {
 
 /// Reads [sources] into problem.sources.
 SourceContext read_sources_section(Section& sources, Problem& problem);
-/// Reads [verification] into control.reference.
+/// Reads [verification] into control.reference and its parameters into `setup`.
 void read_verification_section(Section& verification, const Problem& problem, const SourceContext& sources,
-                               RunControl& control);
+                               RunControl& control, VerificationSetup& setup);
 
 }  // namespace stagger::scene_detail

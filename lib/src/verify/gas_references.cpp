@@ -1,5 +1,5 @@
 /// @file gas_references.cpp
-/// Reference solutions of the gas verification problems (VERIFICATION.md problems 1, 6, 8):
+/// Reference solutions of the gas verification problems (problems 1, 6, 8 of docs/verification.md):
 /// shock tube, Noh implosion, Saltzman piston. Each fills the error norms and the problem's
 /// diagnostics for the current state of a Simulation.
 #include <algorithm>

@@ -1,7 +1,7 @@
 /// @file norms.cpp
-/// Error norms of VERIFICATION.md ("How errors are measured"): area-weighted L1 and L2 means
+/// Error norms of docs/verification.md §11: area-weighted L1 and L2 means
 /// and the maximum, at zone centres (vertex average) and at points (median-dual areas, the
-/// corner areas of NUMERICS section 1), plus the mesh helpers the reference solutions share.
+/// corner areas of docs/algorithm.md §2), plus the mesh helpers the reference solutions share.
 #include <algorithm>
 #include <cmath>
 #include <numeric>

@@ -1,5 +1,5 @@
 /// @file solid_accuracy.cpp
-/// The paper's smooth manufactured solution (section 5.3; NUMERICS.md errata: a momentum
+/// The paper's smooth manufactured solution (section 5.3; docs/algorithm.md §15: a momentum
 /// source makes it exact). Derivation: docs/derivations.md section 4.
 #include <cmath>
 #include <numbers>
@@ -12,7 +12,7 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
-/// Mie-Grueneisen p(rho, e) and dp/drho at constant e (paper eq. 6, NUMERICS.md section 8),
+/// Mie-Grueneisen p(rho, e) and dp/drho at constant e (paper eq. 6, docs/algorithm.md §3),
 /// kept local so that the exact solution is independent of the EOS code it verifies.
 double mg_pressure(const MieGruneisen& m, double rho, double e) {
   const double eta = 1.0 - m.rho0 / rho;

@@ -1,6 +1,6 @@
 /// @file solid_detonation.cpp
-/// Planar Chapman-Jouguet detonation with its Taylor wave for JWL products (VERIFICATION.md
-/// problem 2). Derivation: docs/derivations.md section 3.
+/// Planar Chapman-Jouguet detonation with its Taylor wave for JWL products (problem 2,
+/// docs/verification.md §9). Derivation: docs/derivations.md section 3.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -21,7 +21,7 @@ constexpr std::array<double, 8> kWeights{0.1012285362903763, 0.2223810344533745,
                                          0.2223810344533745, 0.1012285362903763};
 constexpr double kPanel = 2e-3;  // width of a Riemann-invariant quadrature panel in V
 
-/// The JWL terms that do not depend on the energy, f(V), and df/dV (NUMERICS.md section 8:
+/// The JWL terms that do not depend on the energy, f(V), and df/dV (docs/algorithm.md §3:
 /// p = f(V) + omega E / V with E = rho0 e the energy per initial volume).
 double jwl_cold(const Jwl& j, double v) {
   return j.A * (1.0 - j.omega / (j.R1 * v)) * std::exp(-j.R1 * v) +

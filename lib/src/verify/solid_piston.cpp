@@ -1,5 +1,5 @@
 /// @file solid_piston.cpp
-/// Exact two-wave solution of the copper elastic-plastic piston (VERIFICATION.md problem 4).
+/// Exact two-wave solution of the copper elastic-plastic piston (docs/verification.md §7).
 /// Derivation: docs/derivations.md section 1.
 #include <cmath>
 #include <sstream>
@@ -11,7 +11,7 @@ namespace stagger {
 namespace {
 
 /// Mie-Grueneisen pressure without its energy term, f(rho) = p(rho, 0) (paper eq. 6,
-/// NUMERICS.md section 8): p(rho, e) = f(rho) + Gamma0 rho0 e. Kept local so that the exact
+/// docs/algorithm.md §3): p(rho, e) = f(rho) + Gamma0 rho0 e. Kept local so that the exact
 /// solution does not depend on the EOS code it verifies.
 double mg_cold_pressure(const MieGruneisen& eos, double rho) {
   const double eta = 1.0 - eos.rho0 / rho;
@@ -66,7 +66,7 @@ ElasticPlasticPiston::ElasticPlasticPiston(const PistonParameters& parameters) :
   initial_.energy = parameters.initial_pressure / (eos.gamma0 * eos.rho0);  // f(rho0) = 0
 
   // Elastic path in uniaxial strain: dS_xx/dt = (4 mu / 3) du/dx = -(4 mu / 3) (1/rho) drho/dt
-  // (NUMERICS.md section 4 with L_yy = 0), so S_xx = (4 mu / 3) ln(rho0 / rho), S_yy = S_zz =
+  // (docs/algorithm.md §7 with L_yy = 0), so S_xx = (4 mu / 3) ln(rho0 / rho), S_yy = S_zz =
   // -S_xx / 2 and sqrt(3/2 S:S) = 3/2 |S_xx|: yield at S_xx = -2Y/3, rho = rho0 exp(Y / (2 mu)).
   const double s_yield = -2.0 * yield / 3.0;
   const double rho_elastic = eos.rho0 * std::exp(yield / (2.0 * mu));

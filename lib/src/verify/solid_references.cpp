@@ -1,6 +1,6 @@
 /// @file solid_references.cpp
 /// Error norms and diagnostics of the solid and explosive verification problems against
-/// their exact solutions (VERIFICATION.md problems 2-5; norms as defined there).
+/// their exact solutions (problems 2-5 of docs/verification.md; norms of its §11).
 #include <algorithm>
 #include <cmath>
 #include <limits>

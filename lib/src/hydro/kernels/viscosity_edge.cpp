@@ -9,13 +9,14 @@
 
 namespace stagger {
 
-void add_edge_viscosity_forces(const EdgeViscosityInput& in, Index begin, Index end, double gamma_factor, double* fx,
+void add_edge_viscosity_forces(const EdgeViscosityInput& input, Index begin, Index end, double gamma_factor, double* fx,
                                double* fy) {
+  const EdgeViscosityInput in = input;  // thread-private below, as in force_zones
   const Index* cb = in.zone_corner_begin;
   const Index* cp = in.corner_point;
   const double *px = in.x, *py = in.y, *wx = in.ux, *wy = in.uy;
   const double g1 = gamma_factor;
-#pragma omp parallel for schedule(static) if (end - begin > kParallelMin)
+#pragma omp parallel for schedule(static) firstprivate(in) if (end - begin > kParallelMin)
   for (Index z = begin; z < end; ++z) {
     const Index b = cb[z];
     const int n = static_cast<int>(cb[z + 1] - b);

@@ -88,8 +88,11 @@ struct ZoneEndOutput {
 // Z2 over the zones [begin, end) of one material. Merges the zones' dt candidates into
 // `choice`; returns the lowest zone's failure code, kNoFailure if none.
 template <int N, class Geometry, class Eos>
-std::int64_t finish_zones(const ZoneEndInput& in, const HydroOptions& o, const ZoneModel& m, const Eos& eos,
-                          Index begin, Index end, const ZoneEndOutput& out, DtChoice& choice) {
+std::int64_t finish_zones(const ZoneEndInput& input, const HydroOptions& o, const ZoneModel& m, const Eos& eos,
+                          Index begin, Index end, const ZoneEndOutput& output, DtChoice& choice) {
+  // Thread-private copies, as in force_zones.
+  const ZoneEndInput in = input;
+  const ZoneEndOutput out = output;
   const Index* cb = in.zone_corner_begin;
   const Index* cp = in.corner_point;
   const double *vx = in.vx, *vy = in.vy, *ux = in.ux, *uy = in.uy, *x = in.x, *y = in.y;
@@ -97,7 +100,7 @@ std::int64_t finish_zones(const ZoneEndInput& in, const HydroOptions& o, const Z
   const bool objective = o.stress_update == StressUpdate::objective;
   std::int64_t failure = kNoFailure;
   DtChoice best;
-#pragma omp parallel if (end - begin > kParallelMin)
+#pragma omp parallel firstprivate(in, out) if (end - begin > kParallelMin)
   {
     DtChoice local;
 #pragma omp for schedule(static) reduction(min : failure) nowait

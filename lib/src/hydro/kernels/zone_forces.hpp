@@ -52,8 +52,12 @@ struct ZoneForceOutput {
 // Z1 over the zones [begin, end) of one material (EOS `eos`, constants `m`). Returns the
 // lowest zone's failure code, kNoFailure if none.
 template <int N, class Geometry, class Eos>
-std::int64_t force_zones(const ZoneForceInput& in, const HydroOptions& o, const ZoneModel& m, const Eos& eos,
-                         Index begin, Index end, const ZoneForceOutput& out) {
+std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, const ZoneModel& m, const Eos& eos,
+                         Index begin, Index end, const ZoneForceOutput& output) {
+  // Thread-private copies: the loop's stores cannot alias them, so their fields stay in
+  // registers (through the caller's references every field would be reloaded per zone).
+  const ZoneForceInput in = input;
+  const ZoneForceOutput out = output;
   const Index* cb = in.zone_corner_begin;
   const Index* cp = in.corner_point;
   const double *vx = in.vx, *vy = in.vy, *x = in.x, *y = in.y;
@@ -63,7 +67,7 @@ std::int64_t force_zones(const ZoneForceInput& in, const HydroOptions& o, const 
   const bool fb = o.hourglass == Hourglass::flanagan_belytschko;
   std::int64_t failure = kNoFailure;
 
-#pragma omp parallel for schedule(static) reduction(min : failure) if (end - begin > kParallelMin)
+#pragma omp parallel for schedule(static) reduction(min : failure) firstprivate(in, out) if (end - begin > kParallelMin)
   for (Index z = begin; z < end; ++z) {
     const Index b = cb[z];
     const int n = N ? N : cb[z + 1] - b;

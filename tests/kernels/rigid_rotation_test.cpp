@@ -1,13 +1,13 @@
 // Rigid rotation of a pre-stressed zone with discretely rigid kinematics (docs/algorithm.md
-// §7.1), through the same stress kernels and the
-// same predictor-corrector sequence as the step (steps 3 and 8 of docs/algorithm.md).
+// §7.1), through the same stress kernels and the same predictor-corrector sequence as the step
+// (steps 3 and 8 of docs/algorithm.md §1).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
-#include "hydro/zone_geometry.hpp"
-#include "hydro/zone_physics.hpp"
+#include "hydro/kernels/geometry.hpp"
+#include "hydro/kernels/strength.hpp"
 
 namespace stagger {
 
@@ -44,8 +44,8 @@ Rotation quarter_turn(int steps, bool objective) {
     double vnx[4], vny[4], ax[4], ay[4];
     velocity(v, vnx, vny);
     // Step 3: S^{n+1/2} from L(v^n) on x^n.
-    corner_gradients<4>(v, ax, ay);
-    Deviator half = advance_stress(objective, mu, s, s, velocity_gradient(4, vnx, vny, ax, ay, polygon_area<4>(v)), dt / 2);
+    PlanarGeometry::corner_gradients<4>(v, ax, ay);
+    Deviator half = advance_stress(objective, mu, s, s, PlanarGeometry::velocity_gradient(4, vnx, vny, ax, ay, PlanarGeometry::area<4>(v)), dt / 2);
     radial_return(yield, mu, half);
     // Move rigidly; v_bar = (x^{n+1} - x^n)/dt, half geometry x^n + dt/2 v^n.
     ZoneVertices next = v, mid = v;
@@ -59,8 +59,8 @@ Rotation quarter_turn(int steps, bool objective) {
       mid.y[k] = v.y[k] + 0.5 * dt * vny[k];
     }
     // Step 8: S^{n+1} from S^{n+1/2} and L(v_bar) on the half geometry.
-    corner_gradients<4>(mid, ax, ay);
-    s = advance_stress(objective, mu, s, half, velocity_gradient(4, bx, by, ax, ay, polygon_area<4>(mid)), dt);
+    PlanarGeometry::corner_gradients<4>(mid, ax, ay);
+    s = advance_stress(objective, mu, s, half, PlanarGeometry::velocity_gradient(4, bx, by, ax, ay, PlanarGeometry::area<4>(mid)), dt);
     radial_return(yield, mu, s);
     v = next;
     angle += 2 * std::atan(a);

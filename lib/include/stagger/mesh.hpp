@@ -111,5 +111,7 @@ MeshQuality mesh_quality(const Mesh& mesh);
 
 /// Signed area of zone z (positive for CCW).
 double zone_area(const Mesh& mesh, Index z);
+/// Centre of zone z: the average of its vertices (where initial fields are evaluated).
+std::array<double, 2> zone_centre(const Mesh& mesh, Index z);
 
 }  // namespace stagger

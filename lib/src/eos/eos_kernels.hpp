@@ -1,5 +1,5 @@
 #pragma once
-// Pointwise equations of state, inlined into the zone loops (NUMERICS.md section 8).
+// Pointwise equations of state, inlined into the zone loops (docs/algorithm.md §3).
 // Each returns false when (rho, e) is outside the model's domain, so the caller can stop the
 // run with a message naming the zone.
 #include <cmath>
@@ -20,7 +20,8 @@ inline bool evaluate(const IdealGas& g, double rho, double e, PressureSound& out
   return rho > 0.0;
 }
 
-// Paper eq. (6): eta = 1 - rho0/rho; closed-form c^2 of NUMERICS section 8.
+// Paper eq. (6): eta = 1 - rho0/rho; the closed-form c^2 = dp/drho|_e + p/rho^2 dp/de|_rho
+// (docs/algorithm.md §3).
 inline bool evaluate(const MieGruneisen& m, double rho, double e, PressureSound& out) {
   const double eta = 1.0 - m.rho0 / rho;
   const double denom = 1.0 - m.s * eta;

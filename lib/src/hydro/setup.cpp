@@ -13,8 +13,8 @@
 #include "hydro/boundary.hpp"
 #include "hydro/physics_digest.hpp"
 #include "hydro/simulation_impl.hpp"
+#include "hydro/kernels/geometry.hpp"
 #include "hydro/state_fields.hpp"
-#include "hydro/zone_geometry.hpp"
 #include "stagger/error.hpp"
 
 namespace stagger {
@@ -146,10 +146,7 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
   std::vector<double> corner_area(kMaxZoneVertices);
   for (Index z = 0; z < nz; ++z) {
     const ZoneVertices v = load_vertices(m, z);
-    double cx = 0, cy = 0;
-    for (int k = 0; k < v.n; ++k) cx += v.x[k], cy += v.y[k];
-    cx /= v.n;
-    cy /= v.n;
+    const auto [cx, cy] = PlanarGeometry::centre(v);
     const int r = m.zone_region[z];
     const RegionSetup& setup = problem.regions[region_setup[r]];
     const Material& mat = problem.materials[region_material[r]];
@@ -181,7 +178,7 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
     }
     e[z] = e0;
     rho[z] = rho0;
-    corner_areas(v, corner_area.data());
+    PlanarGeometry::corner_areas(v, corner_area.data());
     for (int k = 0; k < v.n; ++k) {
       const Index c = m.zone_corner_begin[z] + k;
       const double mc = rho0 * corner_area[k];
@@ -249,9 +246,9 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
           continue;
         }
         const ZoneVertices v = load_vertices(m, z);
-        double cx = 0, cy = 0, longest_edge = 0;
+        const auto [cx, cy] = PlanarGeometry::centre(v);
+        double longest_edge = 0;
         for (int k = 0; k < v.n; ++k) {
-          cx += v.x[k] / v.n, cy += v.y[k] / v.n;
           const int k1 = (k + 1) % v.n;
           longest_edge = std::max(longest_edge, std::hypot(v.x[k1] - v.x[k], v.y[k1] - v.y[k]));
         }
@@ -264,7 +261,7 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
         }
         lighting_time[z] = mat.burn->time_offset + distance / mat.burn->detonation_speed;
         // LS-DYNA's F1 = 2 (t - t_l) D A_max / (3 V): in 2D, A_max -> longest edge, V -> area.
-        burn_length[z] = 1.5 * polygon_area(v) / longest_edge;
+        burn_length[z] = 1.5 * PlanarGeometry::area(v) / longest_edge;
       }
     }
   }

@@ -2,12 +2,14 @@
 // The state behind stagger::Simulation: structure of arrays, contiguous corners, and the
 // step assembled once from the problem ("skip what a scene doesn't need").
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "hydro/kernels/viscosity_edge.hpp"  // EdgeContinuation
 #include "stagger/simulation.hpp"
 
 namespace stagger {
@@ -30,20 +32,6 @@ struct PointConstraint {
 struct PressureEdge {
   Index a = 0, b = 0;
   int bc = 0;  // index into Problem::boundaries
-};
-
-// Neighbour information for the edge viscosity's Christensen limiter, per corner c (the
-// edge from corner_point[c] to the next point of the zone): what continues the edge beyond
-// each end. A point id (>= 0); kContinuationFree (ratio 0: free or pressure boundary);
-// kContinuationOpen (ratio 1: periodic side); or mirror_code(w): the edge ends on a wall,
-// symmetry plane or piston edge whose other end point is w, and the continuation is the
-// edge's mirror image in it.
-constexpr Index kContinuationFree = -1, kContinuationOpen = -2;
-constexpr Index mirror_code(Index wall_end) { return -3 - wall_end; }
-constexpr Index mirror_wall_end(Index code) { return -3 - code; }
-
-struct EdgeContinuation {
-  Index ahead = kContinuationFree, behind = kContinuationFree;
 };
 
 std::string describe_zone(const Simulation::Impl& s, Index z);
@@ -120,6 +108,15 @@ struct Simulation::Impl {
   explicit Impl(Problem prob);
   void step(double t_stop);
   bool try_step(double dt);  // false: a zone tangled, nothing committed
+  // The calls of try_step (step.cpp; docs/algorithm.md §1).
+  void predict_velocity(double dt, double t_half);
+  std::int64_t zone_forces(const double* px, const double* py, double h_position, const double* qvx,
+                           const double* qvy, double dt_half, double t_eval);
+  void edge_forces(const double* px, const double* py, const double* qvx, const double* qvy);
+  void correct_velocity(double dt, double t_new);
+  std::int64_t end_of_step(double dt, double t_new);
+  void account_boundary_work(double dt);
+  void commit(double dt);
   void external_forces(double t_half);
   Index find_tangled_zone(double dt);
   // Geometry, density, pressure and sound speed from x and e (set-up, restore, remap, retry).

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "mesh/polygon.hpp"
 #include "stagger/output.hpp"
 #include "stagger/simulation.hpp"
 #include "text_format.hpp"
@@ -34,20 +35,15 @@ void write_zone_csv(const std::string& path, const Simulation& simulation) {
   // (the staggered scheme has no zone velocity; this is for plotting only).
   std::vector<double> cx(nzones), cy(nzones), ux(nzones), uy(nzones);
   for (std::size_t z = 0; z < nzones; ++z) {
-    const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
-    double sx = 0, sy = 0, su = 0, sv = 0;
-    for (Index c = begin; c < end; ++c) {
-      const auto p = static_cast<std::size_t>(mesh.corner_point[static_cast<std::size_t>(c)]);
-      sx += x[p];
-      sy += y[p];
-      su += vx[p];
-      sv += vy[p];
-    }
-    const double n = static_cast<double>(end - begin);
-    cx[z] = sx / n;
-    cy[z] = sy / n;
-    ux[z] = su / n;
-    uy[z] = sv / n;
+    const Index begin = mesh.zone_corner_begin[z];
+    const int n = static_cast<int>(mesh.zone_corner_begin[z + 1] - begin);
+    const auto point = [&](int k) { return static_cast<std::size_t>(mesh.corner_point[static_cast<std::size_t>(begin + k)]); };
+    const auto centre = polygon_centre(n, [&](int k) { return x[point(k)]; }, [&](int k) { return y[point(k)]; });
+    const auto velocity = polygon_centre(n, [&](int k) { return vx[point(k)]; }, [&](int k) { return vy[point(k)]; });
+    cx[z] = centre[0];
+    cy[z] = centre[1];
+    ux[z] = velocity[0];
+    uy[z] = velocity[1];
   }
 
   std::vector<Column> columns = {{"area", simulation.zone_area()},

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <unordered_set>
 
+#include "mesh/polygon.hpp"
 #include "stagger/error.hpp"
 #include "stagger/mesh.hpp"
 #include "topology_cgal.hpp"
@@ -187,10 +188,12 @@ void check_zone_geometry(const PolygonSoup& soup) {
     if (const std::string edges = find_pair(segments_cross); !edges.empty())
       throw Error(zone + " crosses itself (bow-tie): its edges " + edges +
                   " intersect; reorder its points: " + zone_points_text(soup, f));
-    double twice_area = 0, longest2 = 0;
+    const double twice_area = polygon_twice_area(
+        static_cast<int>(n), [&](int k) { return soup.x[static_cast<std::size_t>(pt(k))]; },
+        [&](int k) { return soup.y[static_cast<std::size_t>(pt(k))]; });
+    double longest2 = 0;
     for (std::int64_t k = 0; k < n; ++k) {
       const auto a = static_cast<std::size_t>(pt(k)), b = static_cast<std::size_t>(pt(k + 1));
-      twice_area += soup.x[a] * soup.y[b] - soup.x[b] * soup.y[a];  // shoelace
       const double dx = soup.x[b] - soup.x[a], dy = soup.y[b] - soup.y[a];
       longest2 = std::max(longest2, dx * dx + dy * dy);
     }
@@ -273,13 +276,10 @@ Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options,
     // Trusted topology (the built-in generators): orientation from each zone's signed area.
     topo.reversed.assign(npoly, 0);
     for (std::size_t f = 0; f < npoly; ++f) {
-      double twice = 0;
-      const auto begin = soup.polygon_begin[f], end = soup.polygon_begin[f + 1];
-      for (auto k = begin; k < end; ++k) {
-        const auto p0 = static_cast<std::size_t>(cpoints[static_cast<std::size_t>(k)]);
-        const auto p1 = static_cast<std::size_t>(cpoints[static_cast<std::size_t>(k + 1 < end ? k + 1 : begin)]);
-        twice += cx[p0] * cy[p1] - cx[p1] * cy[p0];
-      }
+      const auto begin = soup.polygon_begin[f];
+      const auto point = [&](int k) { return static_cast<std::size_t>(cpoints[static_cast<std::size_t>(begin + k)]); };
+      const double twice = polygon_twice_area(static_cast<int>(soup.polygon_begin[f + 1] - begin),
+                                              [&](int k) { return cx[point(k)]; }, [&](int k) { return cy[point(k)]; });
       topo.reversed[f] = twice < 0 ? 1 : 0;
     }
   }

@@ -7,6 +7,8 @@
 
 #include "stagger/mesh.hpp"
 
+#include "mesh/polygon.hpp"
+
 namespace stagger {
 
 std::size_t PolygonSoup::add_polygon(const std::vector<std::int64_t>& points, int region) {
@@ -35,15 +37,17 @@ int Mesh::tag_index(const std::string& name) const {
 }
 
 double zone_area(const Mesh& mesh, Index z) {
-  // Shoelace formula: A = 1/2 sum (x_k y_{k+1} - x_{k+1} y_k).
-  const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
-  double sum = 0;
-  for (Index c = begin; c < end; ++c) {
-    const Index a = mesh.corner_point[c];
-    const Index b = mesh.corner_point[c + 1 == end ? begin : c + 1];
-    sum += mesh.x[a] * mesh.y[b] - mesh.x[b] * mesh.y[a];
-  }
-  return 0.5 * sum;
+  const Index begin = mesh.zone_corner_begin[z];
+  const int n = static_cast<int>(mesh.zone_corner_begin[z + 1] - begin);
+  return polygon_area(n, [&](int k) { return mesh.x[mesh.corner_point[begin + k]]; },
+                      [&](int k) { return mesh.y[mesh.corner_point[begin + k]]; });
+}
+
+std::array<double, 2> zone_centre(const Mesh& mesh, Index z) {
+  const Index begin = mesh.zone_corner_begin[z];
+  const int n = static_cast<int>(mesh.zone_corner_begin[z + 1] - begin);
+  return polygon_centre(n, [&](int k) { return mesh.x[mesh.corner_point[begin + k]]; },
+                        [&](int k) { return mesh.y[mesh.corner_point[begin + k]]; });
 }
 
 MeshQuality mesh_quality(const Mesh& mesh) {

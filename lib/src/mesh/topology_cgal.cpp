@@ -18,6 +18,7 @@
 #include <iterator>
 #include <sstream>
 
+#include "polygon.hpp"
 #include "stagger/error.hpp"
 
 namespace stagger::detail {
@@ -70,13 +71,8 @@ std::string point_text(const TopologyInput& in, std::size_t p) {
 
 /// Shoelace formula: twice the signed area, positive for counter-clockwise.
 double twice_signed_area(const TopologyInput& in, const Polygon& polygon) {
-  double sum = 0;
-  const std::size_t n = polygon.size();
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::size_t a = polygon[k], b = polygon[(k + 1) % n];
-    sum += in.x[a] * in.y[b] - in.x[b] * in.y[a];
-  }
-  return sum;
+  return polygon_twice_area(static_cast<int>(polygon.size()), [&](int k) { return in.x[polygon[k]]; },
+                            [&](int k) { return in.y[polygon[k]]; });
 }
 
 }  // namespace

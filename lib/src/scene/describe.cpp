@@ -90,7 +90,7 @@ std::string describe(const Scene& scene) {
     double mass = 0;
     if (r >= 0)
       for (Index z = mesh.region_zone_begin[r]; z < mesh.region_zone_begin[r + 1]; ++z) {
-        const auto centre = scene_detail::zone_centre(mesh, z);
+        const auto centre = zone_centre(mesh, z);
         mass += region.density(centre[0], centre[1]) * zone_area(mesh, z);
       }
     out << "  " << region.region << ": material " << region.material << ", " << zones << " zones, mass ~ " << mass

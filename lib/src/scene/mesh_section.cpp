@@ -13,16 +13,6 @@
 
 namespace stagger::scene_detail {
 
-std::array<double, 2> zone_centre(const Mesh& mesh, Index zone) {
-  double cx = 0, cy = 0;
-  const Index begin = mesh.zone_corner_begin[zone], end = mesh.zone_corner_begin[zone + 1];
-  for (Index c = begin; c < end; ++c) {
-    cx += mesh.x[mesh.corner_point[c]];
-    cy += mesh.y[mesh.corner_point[c]];
-  }
-  return {cx / (end - begin), cy / (end - begin)};
-}
-
 namespace {
 
 // Stated limits (docs/scenes.md): a count of the generators, the zones of one generated mesh

@@ -25,7 +25,4 @@ SourceContext read_sources_section(Section& sources, Problem& problem);
 void read_verification_section(Section& verification, const Problem& problem, const SourceContext& sources,
                                RunControl& control, VerificationSetup& setup);
 
-/// Zone centre (vertex average, docs/algorithm.md §2).
-std::array<double, 2> zone_centre(const Mesh& mesh, Index zone);
-
 }  // namespace stagger::scene_detail

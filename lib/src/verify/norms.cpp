@@ -8,6 +8,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "mesh/polygon.hpp"
 #include "stagger/error.hpp"
 #include "stagger/simulation.hpp"
 #include "stagger/verify.hpp"
@@ -32,14 +33,12 @@ std::array<std::vector<double>, 2> zone_centres(const Mesh& mesh, std::span<cons
   const Index zones = mesh.num_zones();
   std::array<std::vector<double>, 2> centres{std::vector<double>(zones), std::vector<double>(zones)};
   for (Index z = 0; z < zones; ++z) {
-    const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
-    double sx = 0, sy = 0;
-    for (Index c = begin; c < end; ++c) {
-      sx += x[mesh.corner_point[c]];
-      sy += y[mesh.corner_point[c]];
-    }
-    centres[0][z] = sx / (end - begin);
-    centres[1][z] = sy / (end - begin);
+    const Index begin = mesh.zone_corner_begin[z];
+    const auto [cx, cy] = polygon_centre(static_cast<int>(mesh.zone_corner_begin[z + 1] - begin),
+                                         [&](int k) { return x[mesh.corner_point[begin + k]]; },
+                                         [&](int k) { return y[mesh.corner_point[begin + k]]; });
+    centres[0][z] = cx;
+    centres[1][z] = cy;
   }
   return centres;
 }
@@ -49,13 +48,10 @@ std::vector<double> zone_areas(const Mesh& mesh, std::span<const double> x, std:
   const Index zones = mesh.num_zones();
   std::vector<double> areas(zones);
   for (Index z = 0; z < zones; ++z) {
-    const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
-    double twice = 0;  // shoelace, docs/algorithm.md §2
-    for (Index c = begin; c < end; ++c) {
-      const Index p = mesh.corner_point[c], q = mesh.corner_point[c + 1 < end ? c + 1 : begin];
-      twice += x[p] * y[q] - x[q] * y[p];
-    }
-    areas[z] = 0.5 * twice;
+    const Index begin = mesh.zone_corner_begin[z];
+    areas[z] = polygon_area(static_cast<int>(mesh.zone_corner_begin[z + 1] - begin),
+                            [&](int k) { return x[mesh.corner_point[begin + k]]; },
+                            [&](int k) { return y[mesh.corner_point[begin + k]]; });
   }
   return areas;
 }
@@ -72,9 +68,7 @@ std::vector<double> point_dual_areas(const Mesh& mesh, std::span<const double> x
       // Corner quadrilateral (point, mid-edge to next, centre, mid-edge to previous).
       const double qx[4] = {x[p], 0.5 * (x[p] + x[next]), centres[0][z], 0.5 * (x[p] + x[prev])};
       const double qy[4] = {y[p], 0.5 * (y[p] + y[next]), centres[1][z], 0.5 * (y[p] + y[prev])};
-      double twice = 0;
-      for (int k = 0; k < 4; ++k) twice += qx[k] * qy[(k + 1) % 4] - qx[(k + 1) % 4] * qy[k];
-      areas[p] += 0.5 * twice;
+      areas[p] += polygon_area(4, [&](int k) { return qx[k]; }, [&](int k) { return qy[k]; });
     }
   }
   return areas;

@@ -1,36 +1,18 @@
 #pragma once
-// Pointwise zone physics shared by the step's loops: deviatoric stress update and return,
-// burn fraction, time-step candidate (NUMERICS sections 4, 6, 8).
+// Deviatoric stress: Wilkins' hypo-elastic update (rate or objective form) and the von Mises
+// radial return, plane strain (docs/algorithm.md §7). Pointwise, inlined into the zone loops.
 #include <algorithm>
 #include <cmath>
 
+#include "hydro/kernels/geometry.hpp"
+
 namespace stagger {
-
-// Velocity gradient L_ij = dv_i/dx_j = (1/A) sum_c v_i a_c,j (NUMERICS section 2).
-struct VelocityGradient {
-  double xx = 0, xy = 0, yx = 0, yy = 0;
-};
-
-[[gnu::always_inline]] inline VelocityGradient velocity_gradient(int n, const double* vx, const double* vy, const double* ax,
-                                          const double* ay, double area) {
-  VelocityGradient L;
-  for (int k = 0; k < n; ++k) {
-    L.xx += vx[k] * ax[k];
-    L.xy += vx[k] * ay[k];
-    L.yx += vy[k] * ax[k];
-    L.yy += vy[k] * ay[k];
-  }
-  const double inv = 1.0 / area;
-  L.xx *= inv, L.xy *= inv, L.yx *= inv, L.yy *= inv;
-  return L;
-}
 
 struct Deviator {
   double xx = 0, yy = 0, xy = 0;
 };
 
-// Jaumann rate of the Wilkins hypo-elastic model, plane strain (NUMERICS section 4):
-// dS/dt = 2 mu (D - tr(D)/3 I) + W S - S W, evaluated at stress s.
+// Jaumann rate: dS/dt = 2 mu (D - tr(D)/3 I) + W S - S W, evaluated at stress s.
 [[gnu::always_inline]] inline Deviator stress_rate(double mu, const Deviator& s, const VelocityGradient& L) {
   const double spin = L.xy - L.yx;
   return {(4.0 / 3.0) * mu * L.xx - (2.0 / 3.0) * mu * L.yy + s.xy * spin,
@@ -40,8 +22,8 @@ struct Deviator {
 
 // S(t+h) from S(t): either the rate form S + h dS/dt(s_rate, L) (the paper's), or the
 // objective incremental update R S R^T + 2 mu D0 h with the Hughes-Winget rotation.
-[[gnu::always_inline]] inline Deviator advance_stress(bool objective, double mu, const Deviator& s0, const Deviator& s_rate,
-                               const VelocityGradient& L, double h) {
+[[gnu::always_inline]] inline Deviator advance_stress(bool objective, double mu, const Deviator& s0,
+                                                      const Deviator& s_rate, const VelocityGradient& L, double h) {
   if (!objective) {
     const Deviator r = stress_rate(mu, s_rate, L);
     return {s0.xx + h * r.xx, s0.yy + h * r.yy, s0.xy + h * r.xy};
@@ -57,8 +39,9 @@ struct Deviator {
   return out;
 }
 
-// von Mises radial return with S_zz = -(S_xx + S_yy) in the norm; returns the equivalent
-// plastic strain increment (sigma_eq - Y) / (3 mu).
+// von Mises radial return with S_zz = -(S_xx + S_yy) in the norm: scales s onto the yield
+// surface sigma_eq = Y when outside it; returns the equivalent plastic strain increment
+// (sigma_eq - Y) / (3 mu).
 [[gnu::always_inline]] inline double radial_return(double yield, double mu, Deviator& s) {
   const double szz = -(s.xx + s.yy);
   const double j2 = s.xx * s.xx + s.yy * s.yy + szz * szz + 2 * s.xy * s.xy;
@@ -69,14 +52,22 @@ struct Deviator {
   return mu > 0 ? (seq - yield) / (3 * mu) : 0.0;
 }
 
-// Time-step candidate of one zone (NUMERICS section 6).
-[[gnu::always_inline]] inline double zone_time_step(double cfl, double q1, double q2, double volume_limit, double l, double C,
-                             double div) {
-  const double qhat = div < 0 ? q1 * l * (-div) + q2 * C : 0.0;
-  const double denom = qhat + std::sqrt(qhat * qhat + C * C);
-  double dt = denom > 0 ? cfl * l / denom : 1e300;
-  if (div != 0) dt = std::min(dt, volume_limit / std::abs(div));
-  return dt;
+// Half-step stress of the predictor (step 3): S^{n+1/2} = return(S^n + h dS/dt(S^n, L)),
+// L = L(v^n) on x^n; S^n itself for h = 0 (a force evaluation at t^n).
+[[gnu::always_inline]] inline Deviator predict_stress(bool objective, double mu, double yield, const Deviator& s0,
+                                                      const VelocityGradient& L, double h) {
+  Deviator sh = s0;
+  if (h > 0) {
+    sh = advance_stress(objective, mu, s0, s0, L, h);
+    radial_return(yield, mu, sh);
+  }
+  return sh;
+}
+
+// Full sound speed C = sqrt(c^2 + 4/3 mu / rho): the EOS's adiabatic c^2 (clipped at 0) plus
+// the shear contribution of an elastic solid (mu = 0 for a fluid).
+[[gnu::always_inline]] inline double full_sound_speed(double c2, double rho, bool strength, double mu) {
+  return std::sqrt(std::max(c2, 0.0) + (strength ? (4.0 / 3.0) * mu / rho : 0.0));
 }
 
 }  // namespace stagger

@@ -1,0 +1,100 @@
+#pragma once
+// The point loops of the step (docs/algorithm.md §1): P1 (steps 2 and 4) and P2 (step 6),
+// the commit of the positions, and the work of the boundary and external forces. Each point
+// gathers its corners' forces in a fixed order (corner_forces.hpp).
+#include "hydro/kernels/corner_forces.hpp"
+#include "hydro/kernels/zone_status.hpp"
+
+namespace stagger {
+
+// Read-only inputs of the point loops.
+struct PointInput {
+  const Index *point_corner_begin, *point_corners;
+  const double *fx, *fy;  // corner forces (f^{n-1/2} in P1, f^{n+1/2} in P2)
+  const double* mass;     // M_p
+  const double *x, *y, *vx, *vy;
+};
+
+// P1: x^{n+1/2} = x^n + h v^n (when x_half is given) and v* = v^n + h F / M_p, h = dt/2.
+inline void predict_points(const PointInput& in, Index np, double h, double* x_half, double* y_half, double* vx_star,
+                           double* vy_star) {
+  const double *x = in.x, *y = in.y, *vx = in.vx, *vy = in.vy, *M = in.mass;
+#pragma omp parallel for schedule(static) if (np > kParallelMin)
+  for (Index p = 0; p < np; ++p) {
+    double Fx, Fy;
+    gather_point_sum(in.point_corner_begin, in.point_corners, in.fx, in.fy, p, Fx, Fy);
+    if (x_half) {
+      x_half[p] = x[p] + h * vx[p];
+      y_half[p] = y[p] + h * vy[p];
+    }
+    vx_star[p] = vx[p] + h * Fx / M[p];
+    vy_star[p] = vy[p] + h * Fy / M[p];
+  }
+}
+
+// v += h (F_ext + F_src) / M_p: applied pressures and momentum sources (src may be null).
+inline void add_external_velocity(Index np, double h, const double* mass, const double* ext_fx, const double* ext_fy,
+                                  const double* src_fx, const double* src_fy, double* vx, double* vy) {
+  const bool sources = src_fx != nullptr;
+  for (Index p = 0; p < np; ++p) {
+    vx[p] += h * (ext_fx[p] + (sources ? src_fx[p] : 0.0)) / mass[p];
+    vy[p] += h * (ext_fy[p] + (sources ? src_fy[p] : 0.0)) / mass[p];
+  }
+}
+
+// P2: v_free = v^n + dt (F + F_ext + F_src) / M_p (ext and src may be null).
+inline void correct_points(const PointInput& in, Index np, double dt, const double* ext_fx, const double* ext_fy,
+                           const double* src_fx, const double* src_fy, double* vx_new, double* vy_new) {
+  const double *vx = in.vx, *vy = in.vy, *M = in.mass;
+  const bool external = ext_fx != nullptr, sources = src_fx != nullptr;
+#pragma omp parallel for schedule(static) if (np > kParallelMin)
+  for (Index p = 0; p < np; ++p) {
+    double Fx, Fy;
+    gather_point_sum(in.point_corner_begin, in.point_corners, in.fx, in.fy, p, Fx, Fy);
+    if (external) {
+      Fx += ext_fx[p] + (sources ? src_fx[p] : 0.0);
+      Fy += ext_fy[p] + (sources ? src_fy[p] : 0.0);
+    }
+    vx_new[p] = vx[p] + dt * Fx / M[p];
+    vy_new[p] = vy[p] + dt * Fy / M[p];
+  }
+}
+
+// x^{n+1} = x^n + dt v_bar, v_bar = (v^n + v^{n+1})/2: the expression Z2 used for the end
+// geometry, so the committed positions are the ones checked.
+inline void commit_positions(Index np, double dt, const double* vx, const double* vy, const double* ux,
+                             const double* uy, double* x, double* y) {
+#pragma omp parallel for schedule(static) if (np > kParallelMin)
+  for (Index p = 0; p < np; ++p) {
+    x[p] = x[p] + dt * 0.5 * (vx[p] + ux[p]);
+    y[p] = y[p] + dt * 0.5 * (vy[p] + uy[p]);
+  }
+}
+
+// Work of the velocity constraints: sum over the constrained points of M_p (v^{n+1} - v_free)
+// . v_bar (the momentum they added, times the same v_bar as the zones' energy update).
+inline double constraint_work(std::size_t count, const Index* points, const double* mass, const double* vx,
+                              const double* vy, const double* ux, const double* uy, const double* free_vx,
+                              const double* free_vy) {
+  double work = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const Index p = points[i];
+    const double bx = 0.5 * (vx[p] + ux[p]), by = 0.5 * (vy[p] + uy[p]);
+    work += mass[p] * ((ux[p] - free_vx[i]) * bx + (uy[p] - free_vy[i]) * by);
+  }
+  return work;
+}
+
+// Work over dt of the applied-pressure forces and of the momentum sources (src may be null)
+// with v_bar: dt sum_p F_p . v_bar_p, added to external_work and source_work.
+inline void point_force_work(Index np, double dt, const double* vx, const double* vy, const double* ux,
+                             const double* uy, const double* ext_fx, const double* ext_fy, const double* src_fx,
+                             const double* src_fy, double& external_work, double& source_work) {
+  for (Index p = 0; p < np; ++p) {
+    const double bx = 0.5 * (vx[p] + ux[p]), by = 0.5 * (vy[p] + uy[p]);
+    external_work += dt * (ext_fx[p] * bx + ext_fy[p] * by);
+    if (src_fx) source_work += dt * (src_fx[p] * bx + src_fy[p] * by);
+  }
+}
+
+}  // namespace stagger

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "hydro/boundary.hpp"
+#include "hydro/kernels/subzonal_pressure.hpp"
 #include "hydro/simulation_impl.hpp"
 #include "hydro/zone_geometry.hpp"
 #include "stagger/error.hpp"
@@ -147,6 +148,7 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
       v->assign(nz, 0.0);
   }
   std::vector<double> corner_area(kMaxZoneVertices);
+  if (opt.hourglass == Hourglass::subzonal) corner_mass.assign(nc, 0.0);
   for (Index z = 0; z < nz; ++z) {
     const ZoneVertices v = load_vertices(m, z);
     double cx = 0, cy = 0;
@@ -185,6 +187,7 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
     e[z] = e0;
     rho[z] = rho0;
     corner_areas(v, corner_area.data());
+    if (!corner_mass.empty()) subzonal_masses(v, rho0, corner_mass.data() + m.zone_corner_begin[z]);
     for (int k = 0; k < v.n; ++k) {
       const Index c = m.zone_corner_begin[z] + k;
       const double mc = rho0 * corner_area[k];

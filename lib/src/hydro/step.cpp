@@ -14,6 +14,7 @@
 
 #include "eos/eos_kernels.hpp"
 #include "hydro/boundary.hpp"
+#include "hydro/kernels/subzonal_pressure.hpp"
 #include "hydro/simulation_impl.hpp"
 #include "hydro/zone_geometry.hpp"
 #include "hydro/zone_physics.hpp"
@@ -113,7 +114,8 @@ std::int64_t force_zones(Simulation::Impl& s, const ZoneRange& r, const Eos& eos
   const double *fpx = s.corner_fx.data(), *fpy = s.corner_fy.data();
   const bool bulk_q = !s.edge_viscosity;
   const bool objective = o.stress_update == StressUpdate::objective;
-  const double hg = o.hourglass_coefficient;
+  const bool subzonal = o.hourglass == Hourglass::subzonal && o.hourglass_coefficient > 0;
+  const double hg = o.hourglass == Hourglass::subzonal ? 0.0 : o.hourglass_coefficient;
   const bool fb = o.hourglass == Hourglass::flanagan_belytschko;
   const auto* energy_source = s.problem.sources && s.problem.sources->energy ? &s.problem.sources->energy : nullptr;
   std::int64_t failure = kNoFailure;
@@ -218,6 +220,9 @@ std::int64_t force_zones(Simulation::Impl& s, const ZoneRange& r, const Eos& eos
         ofy[k] -= a * g[k] * hy;
       }
     }
+    if (subzonal)  // docs/algorithm.md §15
+      add_subzonal_pressure_forces<N>(v, s.corner_mass.data() + b, mass, area, std::max(ps.c2, 0.0),
+                                      o.hourglass_coefficient, ofx, ofy);
   }
   return failure;
 }

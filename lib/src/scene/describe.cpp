@@ -111,7 +111,11 @@ std::string describe(const Scene& scene) {
   else
     out << "edge (c1 " << options.edge_c1 << ", c2 " << options.edge_c2 << ", limiter "
         << (options.edge_limiter ? "on" : "off") << ")";
-  out << ", hourglass " << (options.hourglass == Hourglass::gamma ? "gamma" : "flanagan_belytschko") << " Q "
+  out << ", hourglass "
+      << (options.hourglass == Hourglass::gamma                 ? "gamma"
+          : options.hourglass == Hourglass::flanagan_belytschko ? "flanagan_belytschko"
+                                                                : "subzonal")
+      << " Q "
       << options.hourglass_coefficient << "\n";
   out << "  stress update " << (options.stress_update == StressUpdate::rate ? "rate" : "objective")
       << ", predictor " << (options.fresh_predictor ? "fresh" : "lagged") << ", volume limit " << options.volume_limit

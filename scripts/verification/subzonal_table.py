@@ -8,7 +8,7 @@ Runs `stagger run` on apps/scenes/{blast_box,blast_box_gmsh,sedov,sod,noh_polar,
 overrides for each option set, reads the last .vtu of each run (its own small reader: raw
 appended, zlib-compressed, 64-bit headers, docs/output.md) and prints the tables of
 docs/verification.md "Subzonal pressures" (markdown). Metrics (zone centroid = area centroid):
-  blast, blast_gmsh: status (t reached), cycles, energy audit.
+  blast, blast_gmsh: status (t reached), cycles, crossing zones in the last dump, energy audit.
   Sedov (the scene's check_corner_areas = false; sedov_checked: true): density scatter at fixed radius (0.6 < r < 0.9, 30 radial bins, mean of std/mean) and
          peak-density radius spread (r > 0.5, 18 angular bins over [0, pi/2], max - min of the
          r of each bin's densest zone); L1(rho) from summary.json.
@@ -40,6 +40,10 @@ def subzonal(alpha):
     return ["numerics.hourglass=subzonal", f"numerics.hourglass_coefficient={alpha}"]
 
 
+def triangles(alpha):
+    return ["numerics.hourglass=subzonal_triangles", f"numerics.hourglass_coefficient={alpha}"]
+
+
 OPTIONS = {
     "bulk q, no hourglass control": BULK + ["numerics.hourglass_coefficient=0"],
     "bulk q + gamma 0.1 (default)": BULK + ["numerics.hourglass=gamma", "numerics.hourglass_coefficient=0.1"],
@@ -49,13 +53,19 @@ OPTIONS = {
     "bulk q + subzonal 0.5": BULK + subzonal(0.5),
     "bulk q + subzonal 1": BULK + subzonal(1),
     "bulk q + subzonal 2": BULK + subzonal(2),
+    "bulk q + triangles 0.5": BULK + triangles(0.5),
+    "bulk q + triangles 1": BULK + triangles(1),
+    "bulk q + triangles 2": BULK + triangles(2),
     "edge q + subzonal 0.5": EDGE + subzonal(0.5),
     "edge q + subzonal 1": EDGE + subzonal(1),
+    "edge q + triangles 1": EDGE + triangles(1),
+    "edge q + triangles 2": EDGE + triangles(2),
 }
 
 # The Noh scenes run only with the edge viscosity (their own): with the bulk q the polar Noh takes
 # 400 000 cycles (5 minutes) and gives a plateau of 14.1 (docs/verification.md section 2).
-EDGE_ONLY = ["edge q + gamma 0.1", "edge q + subzonal 0.5", "edge q + subzonal 1"]
+EDGE_ONLY = ["edge q + gamma 0.1", "edge q + subzonal 0.5", "edge q + subzonal 1", "edge q + triangles 1",
+             "edge q + triangles 2"]
 ONLY = {"noh_polar": EDGE_ONLY, "noh": EDGE_ONLY}
 
 # problem -> (scene, extra overrides)
@@ -122,6 +132,32 @@ def zones(arrays):
     return cx, cy, area, polys, pts
 
 
+def crossing_zones(arrays):
+    """Zones whose boundary crosses itself or whose signed area is not positive."""
+    _, _, area, polys, pts = zones(arrays)
+    count = 0
+    for ids, a in zip(polys, area):
+        if not a > 0:
+            count += 1
+            continue
+        n = len(ids)
+        x, y = pts[ids, 0], pts[ids, 1]
+
+        def side(i, j, k):
+            return (x[j] - x[i]) * (y[k] - y[i]) - (y[j] - y[i]) * (x[k] - x[i])
+
+        crossed = False
+        for i in range(n):
+            for j in range(i + 2, n):
+                if (j + 1) % n == i:
+                    continue
+                i1, j1 = (i + 1) % n, (j + 1) % n
+                if side(i, i1, j) * side(i, i1, j1) < 0 and side(j, j1, i) * side(j, j1, i1) < 0:
+                    crossed = True
+        count += crossed
+    return count
+
+
 def last_vtu(out):
     pvd = [f for f in os.listdir(out) if f.endswith(".pvd")][0]
     files = re.findall(r'file="([^"]+)"', open(os.path.join(out, pvd)).read())
@@ -184,7 +220,7 @@ def main():
     for problem in args.only:
         print(f"\n### {problem}\n")
         if problem.startswith("blast"):
-            print("| options | status | cycles | energy audit |\n|---|---|---|---|")
+            print("| options | status | cycles | crossing zones (last dump) | energy audit |\n|---|---|---|---|---|")
         elif problem.startswith("sedov"):
             print("| options | status | scatter at fixed r | peak-radius spread | L1(rho) | cycles |\n|---|---|---|---|---|---|")
         elif problem == "sod":
@@ -204,7 +240,7 @@ def main():
             audit = f'{s["energy"]["relative_error"]:.1e}'
             arrays = read_vtu(last_vtu(out))
             if problem.startswith("blast"):
-                print(f'| {option} | {status} | {s["cycles"]} | {audit} |')
+                print(f'| {option} | {status} | {s["cycles"]} | {crossing_zones(arrays)} | {audit} |')
             elif problem.startswith("sedov"):
                 if s["status"] == "completed":
                     scat, spread = sedov_metrics(arrays)

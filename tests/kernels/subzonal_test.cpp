@@ -34,43 +34,48 @@ struct Forces {
   double scale = 0;  // sum |f|
 };
 
-Forces forces(const ZoneVertices& v, const double* mass, double c2 = 2.0, double alpha = 0.7) {
+Forces forces(const ZoneVertices& v, const double* mass, Subzones shape, double c2 = 2.0, double alpha = 0.7) {
   double zone_mass = 0;
   for (int k = 0; k < v.n; ++k) zone_mass += mass[k];
   Forces f;
-  add_subzonal_pressure_forces(v, mass, zone_mass, polygon_area(v), c2, alpha, f.fx, f.fy);
+  add_subzonal_pressure_forces(v, mass, zone_mass, polygon_area(v), c2, alpha, shape, f.fx, f.fy);
   for (int k = 0; k < v.n; ++k) f.scale += std::hypot(f.fx[k], f.fy[k]);
   return f;
 }
 
 // Masses of a distorted initial zone: subzonal densities differ from the zone's now.
-std::vector<double> masses_of(const ZoneVertices& v0, double rho0) {
+std::vector<double> masses_of(const ZoneVertices& v0, double rho0, Subzones shape) {
   std::vector<double> m(v0.n);
-  subzonal_masses(v0, rho0, m.data());
+  subzonal_masses(v0, rho0, shape, m.data());
   return m;
 }
+
+// Subzone volume k from the side triangles t.
+double subzone_volume(const double* t, int k, int n, Subzones shape) {
+  return shape == Subzones::corners ? 0.5 * (t[(k + n - 1) % n] + t[k]) : t[k];
+}
+
+constexpr Subzones kShapes[] = {Subzones::corners, Subzones::triangles};
 
 }  // namespace
 
 TEST(Subzonal, ForcesAreTheGradientOfTheSubzonalPressureWork) {
   // With dp_k frozen, f_j = d/dx_j sum_k dp_k V_k: compare with central differences.
+  for (Subzones shape : kShapes)
   for (int n : {4, 5, 6, 8}) {
     const ZoneVertices v = wobbly_polygon(n, 0.15);
-    const std::vector<double> m = masses_of(wobbly_polygon(n, 0.0), 1.3);
-    const Forces f = forces(v, m.data(), 1.0, 1.0);
+    const std::vector<double> m = masses_of(wobbly_polygon(n, 0.0), 1.3, shape);
+    const Forces f = forces(v, m.data(), shape, 1.0, 1.0);
     ASSERT_GT(f.scale, 1e-3) << n;
     double zone_mass = 0;
     for (double mk : m) zone_mass += mk;
     double cx, cy, t[kMaxZoneVertices], dp[kMaxZoneVertices];
     subzonal_side_triangles(v, cx, cy, t);
-    for (int k = 0; k < n; ++k) {
-      const double vk = 0.5 * (t[(k + n - 1) % n] + t[k]);
-      dp[k] = m[k] / vk - zone_mass / polygon_area(v);
-    }
+    for (int k = 0; k < n; ++k) dp[k] = m[k] / subzone_volume(t, k, n, shape) - zone_mass / polygon_area(v);
     auto work = [&](const ZoneVertices& w) {
       double c_x, c_y, tw[kMaxZoneVertices], sum = 0;
       subzonal_side_triangles(w, c_x, c_y, tw);
-      for (int k = 0; k < n; ++k) sum += dp[k] * 0.5 * (tw[(k + n - 1) % n] + tw[k]);
+      for (int k = 0; k < n; ++k) sum += dp[k] * subzone_volume(tw, k, n, shape);
       return sum;
     };
     const double h = 1e-6;
@@ -86,10 +91,11 @@ TEST(Subzonal, ForcesAreTheGradientOfTheSubzonalPressureWork) {
 }
 
 TEST(Subzonal, ForcesSumToZeroAndDoNoWorkUnderRigidMotion) {
+  for (Subzones shape : kShapes)
   for (int n : {4, 5, 6, 7, 8}) {
     const ZoneVertices v = wobbly_polygon(n, 0.2);
-    const std::vector<double> m = masses_of(wobbly_polygon(n, 0.05), 2.0);
-    const Forces f = forces(v, m.data());
+    const std::vector<double> m = masses_of(wobbly_polygon(n, 0.05), 2.0, shape);
+    const Forces f = forces(v, m.data(), shape);
     ASSERT_GT(f.scale, 1e-2) << n;
     double sx = 0, sy = 0, rotation_work = 0, rotation_scale = 0;
     for (int k = 0; k < n; ++k) {
@@ -110,9 +116,10 @@ TEST(Subzonal, NoForceUnderUniformCompressionOrAnyAffineDeformation) {
   // subzonal densities stay equal to the zone's: a uniform compression, a shear, a
   // stretch of a distorted zone give no subzonal force (unlike the Gamma hourglass force).
   // Any triangle is an affine image of any other: triangles never get a subzonal force.
+  for (Subzones shape : kShapes)
   for (int n : {3, 4, 5, 6, 8}) {
     const ZoneVertices v0 = wobbly_polygon(n, 0.2);
-    const std::vector<double> m = masses_of(v0, 1.7);
+    const std::vector<double> m = masses_of(v0, 1.7, shape);
     const double maps[3][4] = {{0.5, 0, 0, 0.5}, {1.0, 0.6, 0, 1.0}, {1.3, 0.2, -0.4, 0.45}};
     for (const auto& a : maps) {
       ZoneVertices v = v0;
@@ -120,7 +127,7 @@ TEST(Subzonal, NoForceUnderUniformCompressionOrAnyAffineDeformation) {
         v.x[k] = a[0] * v0.x[k] + a[1] * v0.y[k] + 0.25;
         v.y[k] = a[2] * v0.x[k] + a[3] * v0.y[k] - 1.5;
       }
-      const Forces f = forces(v, m.data(), 2.0, 1.0);
+      const Forces f = forces(v, m.data(), shape, 2.0, 1.0);
       // Scale of a real pressure force here: c^2 rho times the zone size ~ 2 * 1.7 * 1.
       EXPECT_LT(f.scale, 1e-13) << n;
     }
@@ -131,11 +138,12 @@ TEST(Subzonal, TheHourglassModeMeetsARestoringForce) {
   // A square and a regular hexagon pushed along their alternating (hourglass) mode: the
   // force opposes the displacement, so the work done on the mode is negative, and it grows
   // linearly with the amplitude.
+  for (Subzones shape : kShapes)
   for (int n : {4, 6}) {
     ZoneVertices v0;
     v0.n = n;
     for (int k = 0; k < n; ++k) v0.x[k] = std::cos(2 * M_PI * k / n), v0.y[k] = std::sin(2 * M_PI * k / n);
-    const std::vector<double> m = masses_of(v0, 1.0);
+    const std::vector<double> m = masses_of(v0, 1.0, shape);
     double previous = 0;
     for (double eps : {1e-3, 2e-3}) {
       for (const auto& dir : {std::array<double, 2>{1, 0}, std::array<double, 2>{0.6, 0.8}}) {
@@ -145,7 +153,7 @@ TEST(Subzonal, TheHourglassModeMeetsARestoringForce) {
           v.x[k] += eps * g * dir[0];
           v.y[k] += eps * g * dir[1];
         }
-        const Forces f = forces(v, m.data(), 1.0, 1.0);
+        const Forces f = forces(v, m.data(), shape, 1.0, 1.0);
         double along = 0;  // force projected on the mode: d(work)/d(eps)
         for (int k = 0; k < n; ++k) along += ((k % 2) ? -1.0 : 1.0) * (f.fx[k] * dir[0] + f.fy[k] * dir[1]);
         EXPECT_LT(along, 0) << n << " eps " << eps;
@@ -214,10 +222,13 @@ TEST(Subzonal, EnergyAuditAndMomentumStayAtRoundOffInARun) {
     EXPECT_LT(std::abs(sim.energy().relative_error), 1e-13);
     return std::vector<double>(sim.x().begin(), sim.x().end());
   };
-  const std::vector<double> on = run(Hourglass::subzonal, 1.0), off = run(Hourglass::subzonal, 0.0);
-  double change = 0;
-  for (std::size_t i = 0; i < on.size(); ++i) change = std::max(change, std::abs(on[i] - off[i]));
-  EXPECT_GT(change, 1e-6);  // the subzonal forces moved the points
+  const std::vector<double> off = run(Hourglass::subzonal, 0.0);
+  for (Hourglass h : {Hourglass::subzonal, Hourglass::subzonal_triangles}) {
+    const std::vector<double> on = run(h, 1.0);
+    double change = 0;
+    for (std::size_t i = 0; i < on.size(); ++i) change = std::max(change, std::abs(on[i] - off[i]));
+    EXPECT_GT(change, 1e-6);  // the subzonal forces moved the points
+  }
 }
 
 }  // namespace stagger

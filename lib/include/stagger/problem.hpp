@@ -68,9 +68,10 @@ struct BoundaryCondition {
 enum class Viscosity { bulk, edge };
 /// Hourglass control (NUMERICS.md section 7): the paper's viscosity on the mode
 /// Gamma = (1,-1,1,-1), or the Flanagan-Belytschko projection (better on distorted quads),
-/// or subzonal pressures from constant corner masses (any polygon; docs/algorithm.md §15),
-/// whose merit factor is hourglass_coefficient.
-enum class Hourglass { gamma, flanagan_belytschko, subzonal };
+/// or subzonal pressures from constant subzone masses (any polygon; docs/algorithm.md §15)
+/// on the median-mesh corners or on the side triangles, whose merit factor is
+/// hourglass_coefficient.
+enum class Hourglass { gamma, flanagan_belytschko, subzonal, subzonal_triangles };
 /// Deviatoric stress update (NUMERICS.md section 4): the paper's rate form, or the objective
 /// incremental update S <- R S R^T (Hughes-Winget rotation).
 enum class StressUpdate { rate, objective };

@@ -148,7 +148,9 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
       v->assign(nz, 0.0);
   }
   std::vector<double> corner_area(kMaxZoneVertices);
-  if (opt.hourglass == Hourglass::subzonal) corner_mass.assign(nc, 0.0);
+  const bool subzonal = opt.hourglass == Hourglass::subzonal || opt.hourglass == Hourglass::subzonal_triangles;
+  const Subzones subzones = opt.hourglass == Hourglass::subzonal ? Subzones::corners : Subzones::triangles;
+  if (subzonal) corner_mass.assign(nc, 0.0);
   for (Index z = 0; z < nz; ++z) {
     const ZoneVertices v = load_vertices(m, z);
     double cx = 0, cy = 0;
@@ -187,7 +189,7 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
     e[z] = e0;
     rho[z] = rho0;
     corner_areas(v, corner_area.data());
-    if (!corner_mass.empty()) subzonal_masses(v, rho0, corner_mass.data() + m.zone_corner_begin[z]);
+    if (subzonal) subzonal_masses(v, rho0, subzones, corner_mass.data() + m.zone_corner_begin[z]);
     for (int k = 0; k < v.n; ++k) {
       const Index c = m.zone_corner_begin[z] + k;
       const double mc = rho0 * corner_area[k];

@@ -114,8 +114,10 @@ std::int64_t force_zones(Simulation::Impl& s, const ZoneRange& r, const Eos& eos
   const double *fpx = s.corner_fx.data(), *fpy = s.corner_fy.data();
   const bool bulk_q = !s.edge_viscosity;
   const bool objective = o.stress_update == StressUpdate::objective;
-  const bool subzonal = o.hourglass == Hourglass::subzonal && o.hourglass_coefficient > 0;
-  const double hg = o.hourglass == Hourglass::subzonal ? 0.0 : o.hourglass_coefficient;
+  const bool subzonal_any = o.hourglass == Hourglass::subzonal || o.hourglass == Hourglass::subzonal_triangles;
+  const bool subzonal = subzonal_any && o.hourglass_coefficient > 0;
+  const Subzones subzones = o.hourglass == Hourglass::subzonal ? Subzones::corners : Subzones::triangles;
+  const double hg = subzonal_any ? 0.0 : o.hourglass_coefficient;
   const bool fb = o.hourglass == Hourglass::flanagan_belytschko;
   const auto* energy_source = s.problem.sources && s.problem.sources->energy ? &s.problem.sources->energy : nullptr;
   std::int64_t failure = kNoFailure;
@@ -222,7 +224,7 @@ std::int64_t force_zones(Simulation::Impl& s, const ZoneRange& r, const Eos& eos
     }
     if (subzonal)  // docs/algorithm.md §15
       add_subzonal_pressure_forces<N>(v, s.corner_mass.data() + b, mass, area, std::max(ps.c2, 0.0),
-                                      o.hourglass_coefficient, ofx, ofy);
+                                      o.hourglass_coefficient, subzones, ofx, ofy);
   }
   return failure;
 }

@@ -114,7 +114,8 @@ std::string describe(const Scene& scene) {
   out << ", hourglass "
       << (options.hourglass == Hourglass::gamma                 ? "gamma"
           : options.hourglass == Hourglass::flanagan_belytschko ? "flanagan_belytschko"
-                                                                : "subzonal")
+          : options.hourglass == Hourglass::subzonal            ? "subzonal"
+                                                                : "subzonal_triangles")
       << " Q "
       << options.hourglass_coefficient << "\n";
   out << "  stress update " << (options.stress_update == StressUpdate::rate ? "rate" : "objective")

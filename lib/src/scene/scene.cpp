@@ -372,10 +372,12 @@ void read_numerics(Section& section, HydroOptions& options) {
   options.edge_c1 = in_range("edge_c1", options.edge_c1, 0, inf, false, true);
   options.edge_c2 = in_range("edge_c2", options.edge_c2, 0, inf, false, true);
   options.edge_limiter = section.boolean("edge_limiter", options.edge_limiter);
-  const std::string hourglass = section.choice("hourglass", {"gamma", "flanagan_belytschko", "subzonal"}, "gamma");
+  const std::string hourglass =
+      section.choice("hourglass", {"gamma", "flanagan_belytschko", "subzonal", "subzonal_triangles"}, "gamma");
   options.hourglass = hourglass == "gamma"                 ? Hourglass::gamma
                       : hourglass == "flanagan_belytschko" ? Hourglass::flanagan_belytschko
-                                                           : Hourglass::subzonal;
+                      : hourglass == "subzonal"            ? Hourglass::subzonal
+                                                           : Hourglass::subzonal_triangles;
   options.hourglass_coefficient = in_range("hourglass_coefficient", options.hourglass_coefficient, 0, inf, false, true);
   options.stress_update =
       section.choice("stress_update", {"rate", "objective"}, "rate") == "rate" ? StressUpdate::rate : StressUpdate::objective;

@@ -35,13 +35,18 @@ template <int N = 0>
   }
 }
 
-// Constant subzonal (corner) masses m_k = rho0 V_k at set-up, in the zone's corner order.
+// The two subzonings: the paper's median-mesh corners (V_k = (t_{k-1} + t_k) / 2), or the
+// side triangles (V_k = t_k, PENNANT's "temporary triangular subzoning").
+enum class Subzones { corners, triangles };
+
+// Constant subzonal masses m_k = rho0 V_k at set-up, in the zone's corner order.
 template <int N = 0>
-inline void subzonal_masses(const ZoneVertices& v, double rho0, double* mass) {
+inline void subzonal_masses(const ZoneVertices& v, double rho0, Subzones shape, double* mass) {
   const int n = N ? N : v.n;
   double cx, cy, t[kMaxZoneVertices];
   subzonal_side_triangles<N>(v, cx, cy, t);
-  for (int k = 0; k < n; ++k) mass[k] = rho0 * 0.5 * (t[k == 0 ? n - 1 : k - 1] + t[k]);
+  for (int k = 0; k < n; ++k)
+    mass[k] = rho0 * (shape == Subzones::corners ? 0.5 * (t[k == 0 ? n - 1 : k - 1] + t[k]) : t[k]);
 }
 
 // Adds the subzonal-pressure forces of one zone to its corner forces fx[k], fy[k] (k in the
@@ -51,23 +56,26 @@ inline void subzonal_masses(const ZoneVertices& v, double rho0, double* mass) {
 // factor. A corner whose volume is not positive (the zone is folding there, which the step
 // rejects) gets no perturbation rather than an infinite one.
 template <int N = 0>
-[[gnu::always_inline]] inline void add_subzonal_pressure_forces(const ZoneVertices& v, const double* corner_mass,
+[[gnu::always_inline]] inline void add_subzonal_pressure_forces(const ZoneVertices& v, const double* subzone_mass,
                                                                double zone_mass, double area, double c2,
-                                                               double alpha, double* fx, double* fy) {
+                                                               double alpha, Subzones shape, double* fx,
+                                                               double* fy) {
   const int n = N ? N : v.n;
   double cx, cy, t[kMaxZoneVertices], dp[kMaxZoneVertices];
   subzonal_side_triangles<N>(v, cx, cy, t);
   const double rho_z = zone_mass / area, stiffness = alpha * c2;
+  const bool corners = shape == Subzones::corners;
   for (int k = 0; k < n; ++k) {
-    const double vk = 0.5 * (t[k == 0 ? n - 1 : k - 1] + t[k]);
-    dp[k] = vk > 0 ? stiffness * (corner_mass[k] / vk - rho_z) : 0.0;
+    const double vk = corners ? 0.5 * (t[k == 0 ? n - 1 : k - 1] + t[k]) : t[k];
+    dp[k] = vk > 0 ? stiffness * (subzone_mass[k] / vk - rho_z) : 0.0;
   }
-  // sum_k dp_k V_k = sum_k pi_k t_k with the side pressure pi_k = (dp_k + dp_{k+1}) / 2; so
-  // f_j = sum_k pi_k dt_k/dx_j, and the centre's share (dt_k/dc) goes 1/n to every vertex.
+  // sum_k dp_k V_k = sum_k pi_k t_k with the side pressure pi_k = (dp_k + dp_{k+1}) / 2 for
+  // corners, dp_k for triangles; so f_j = sum_k pi_k dt_k/dx_j, and the centre's share
+  // (dt_k/dc) goes 1/n to every vertex.
   double gx = 0, gy = 0;
   for (int k = 0; k < n; ++k) {
     const int k1 = (k + 1 == n) ? 0 : k + 1;
-    const double pi = 0.5 * (dp[k] + dp[k1]);
+    const double pi = corners ? 0.5 * (dp[k] + dp[k1]) : dp[k];
     if (pi == 0) continue;
     // d(2 t_k)/dx_k = (y_{k+1} - cy, cx - x_{k+1}); d(2 t_k)/dx_{k+1} = (cy - y_k, x_k - cx).
     fx[k] += 0.5 * pi * (v.y[k1] - cy);

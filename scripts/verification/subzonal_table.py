@@ -11,7 +11,7 @@ docs/verification.md "Subzonal pressures" (markdown). Metrics (zone centroid = a
   blast, blast_gmsh: status (t reached), cycles, crossing zones in the last dump, energy audit.
   Sedov (the scene's check_corner_areas = false; sedov_checked: true): density scatter at fixed radius (0.6 < r < 0.9, 30 radial bins, mean of std/mean) and
          peak-density radius spread (r > 0.5, 18 angular bins over [0, pi/2], max - min of the
-         r of each bin's densest zone); L1(rho) from summary.json.
+         r of each bin's densest zone); shock radius error and L1(rho) from summary.json.
   Sod:   L1(rho) from summary.json.
   Noh polar: plateau and asymmetry as the scene's reference reports them (summary.json).
   Noh Cartesian: axis jet (zones touching x = 0 or y = 0 with 0.05 < r < 0.15: worst
@@ -222,7 +222,8 @@ def main():
         if problem.startswith("blast"):
             print("| options | status | cycles | crossing zones (last dump) | energy audit |\n|---|---|---|---|---|")
         elif problem.startswith("sedov"):
-            print("| options | status | scatter at fixed r | peak-radius spread | L1(rho) | cycles |\n|---|---|---|---|---|---|")
+            print("| options | status | scatter at fixed r | peak-radius spread | shock radius | L1(rho) | cycles |\n"
+                  "|---|---|---|---|---|---|---|")
         elif problem == "sod":
             print("| options | status | L1(rho) | audit |\n|---|---|---|---|")
         elif problem == "noh_polar":
@@ -245,9 +246,11 @@ def main():
                 if s["status"] == "completed":
                     scat, spread = sedov_metrics(arrays)
                     l1 = s.get("errors", {}).get("L1_density", float("nan"))
-                    print(f'| {option} | {status} | {scat:.3f} | {spread:.4f} | {l1:.4f} | {s["cycles"]} |')
+                    shock = 100 * s.get("diagnostics", {}).get("shock_radius_error", float("nan"))
+                    print(f'| {option} | {status} | {scat:.3f} | {spread:.4f} | {shock:+.2f} % | {l1:.4f} | '
+                          f'{s["cycles"]} |')
                 else:
-                    print(f'| {option} | {status} | - | - | - | {s["cycles"]} |')
+                    print(f'| {option} | {status} | - | - | - | - | {s["cycles"]} |')
             elif problem == "sod":
                 l1 = s.get("errors", {}).get("L1_density", float("nan"))
                 print(f"| {option} | {status} | {l1:.3e} | {audit} |")

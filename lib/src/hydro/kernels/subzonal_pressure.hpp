@@ -1,17 +1,17 @@
 #pragma once
 // Subzonal pressures (Caramana & Shashkov, JCP 142, 1998): docs/algorithm.md §15.
 //
-// Each zone is split into its median-mesh corners (corner k: x_k, the midpoints of its two
-// edges, and the vertex-average centre). A corner keeps the mass it had at t = 0,
-// m_k = rho_z^0 V_k^0, so its density rho_k = m_k / V_k departs from the zone's when the
-// zone distorts at fixed area (hourglass and spurious-vorticity modes, which the zone
-// pressure cannot see). The perturbation dp_k = alpha c^2 (rho_k - rho_z) acts on the
-// corner volumes: the force on vertex j is f_j = sum_k dp_k dV_k/dx_j, the exact gradient
-// of the corner volumes as functions of the zone's vertices (the midpoints and the centre
-// being averages of them). Being a gradient of volumes that are invariant under rigid
-// motion, the forces sum to zero and do no work under translation and rotation; being
-// corner forces, they enter the compatible energy update like the zone pressure, so total
-// energy stays exact to round-off. Works for any polygon.
+// Each zone is split into subzones: its median-mesh corners (corner k: x_k, the midpoints of
+// its two edges, and the vertex-average centre), or its side triangles (centre, x_k,
+// x_{k+1}). A subzone keeps the mass it had at t = 0, m_k = rho_z^0 V_k^0, so its density
+// rho_k = m_k / V_k departs from the zone's when the zone distorts at fixed area (hourglass
+// and spurious-vorticity modes, which the zone pressure cannot see). The perturbation
+// dp_k = alpha c^2 (rho_k - rho_z) acts on the subzone volumes: the force on vertex j is
+// f_j = sum_k dp_k dV_k/dx_j, the exact gradient of the volumes as functions of the zone's
+// vertices (the midpoints and the centre being averages of them). Being a gradient of
+// volumes that are invariant under rigid motion, the forces sum to zero and do no work under
+// translation and rotation; being corner forces, they enter the compatible energy update
+// like the zone pressure, so total energy stays exact to round-off. Works for any polygon.
 //
 // Header-only, over explicit inputs, so that the zone loop inlines it and tests can call it.
 #include "hydro/zone_geometry.hpp"

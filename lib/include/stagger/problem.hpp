@@ -67,8 +67,11 @@ struct BoundaryCondition {
 /// Artificial viscosity: zone-centred bulk q, or the edge-centred viscosity with limiter.
 enum class Viscosity { bulk, edge };
 /// Hourglass control (docs/algorithm.md §6): the paper's viscosity on the mode
-/// Gamma = (1,-1,1,-1), or the Flanagan-Belytschko projection (better on distorted quads).
-enum class Hourglass { gamma, flanagan_belytschko };
+/// Gamma = (1,-1,1,-1), or the Flanagan-Belytschko projection (better on distorted quads),
+/// or subzonal pressures from constant subzone masses (any polygon; docs/algorithm.md §18)
+/// on the median-mesh corners or on the side triangles, whose merit factor is
+/// hourglass_coefficient.
+enum class Hourglass { gamma, flanagan_belytschko, subzonal, subzonal_triangles };
 /// Deviatoric stress update (docs/algorithm.md §7): the paper's rate form, or the objective
 /// incremental update S <- R S R^T (Hughes-Winget rotation).
 enum class StressUpdate { rate, objective };

@@ -11,9 +11,10 @@
 #include <sstream>
 
 #include "hydro/boundary.hpp"
+#include "hydro/kernels/geometry.hpp"
+#include "hydro/kernels/subzonal_pressure.hpp"
 #include "hydro/physics_digest.hpp"
 #include "hydro/simulation_impl.hpp"
-#include "hydro/kernels/geometry.hpp"
 #include "hydro/state_fields.hpp"
 #include "stagger/error.hpp"
 
@@ -144,6 +145,8 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
 
   // Initial density and energy at zone centres; corner masses rho^0 A_c^0 (NUMERICS section 1).
   std::vector<double> corner_area(kMaxZoneVertices);
+  const bool subzonal = opt.hourglass == Hourglass::subzonal || opt.hourglass == Hourglass::subzonal_triangles;
+  const Subzones subzones = opt.hourglass == Hourglass::subzonal ? Subzones::corners : Subzones::triangles;
   for (Index z = 0; z < nz; ++z) {
     const ZoneVertices v = load_vertices(m, z);
     const auto [cx, cy] = PlanarGeometry::centre(v);
@@ -179,6 +182,7 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
     e[z] = e0;
     rho[z] = rho0;
     PlanarGeometry::corner_areas(v, corner_area.data());
+    if (subzonal) subzonal_masses(v, rho0, subzones, corner_mass.data() + m.zone_corner_begin[z]);
     for (int k = 0; k < v.n; ++k) {
       const Index c = m.zone_corner_begin[z] + k;
       const double mc = rho0 * corner_area[k];

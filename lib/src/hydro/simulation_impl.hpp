@@ -74,6 +74,7 @@ struct Simulation::Impl {
   std::vector<double> burn, burn_new, lighting_time, burn_length;
   // Corner forces: the last corrector's f^{n-1/2}, overwritten in place by f^{n+1/2}.
   std::vector<double> corner_fx, corner_fy;
+  std::vector<double> corner_mass;  // constant subzone masses (the subzonal hourglass options only)
   std::vector<EdgeContinuation> continuation;
 
   // Boundary conditions.

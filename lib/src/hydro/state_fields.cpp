@@ -76,6 +76,8 @@ const std::array kFields = {
     StateField{"corner_fx", &I::corner_fx, Entity::corner, Presence::always, kC},
     StateField{"corner_fy", &I::corner_fy, Entity::corner, Presence::always, kC},
     StateField{"corner_scratch", &I::corner_scratch, Entity::corner, Presence::momentum_source},
+    // Constant subzonal masses (set-up; a remap carries them like the zone masses).
+    StateField{"corner_mass", &I::corner_mass, Entity::corner, Presence::subzonal, kR},
 };
 
 }  // namespace
@@ -103,6 +105,9 @@ bool present(const Simulation::Impl& s, Presence presence) {
       return sources && sources->momentum;
     case Presence::energy_source:
       return sources && sources->energy;
+    case Presence::subzonal:
+      return s.problem.options.hourglass == Hourglass::subzonal ||
+             s.problem.options.hourglass == Hourglass::subzonal_triangles;
   }
   return false;
 }

@@ -22,6 +22,7 @@ enum class Presence {
   external,         // applied pressure or a momentum source
   momentum_source,  // manufactured momentum source
   energy_source,    // manufactured energy source
+  subzonal,         // numerics.hourglass = "subzonal" or "subzonal_triangles"
 };
 
 // What an array takes part in (bit flags).

@@ -12,6 +12,7 @@
 #include "hydro/kernels/geometry.hpp"
 #include "hydro/kernels/hourglass.hpp"
 #include "hydro/kernels/strength.hpp"
+#include "hydro/kernels/subzonal_pressure.hpp"
 #include "hydro/kernels/viscosity_bulk.hpp"
 #include "hydro/kernels/zone_model.hpp"
 #include "hydro/kernels/zone_status.hpp"
@@ -39,6 +40,7 @@ struct ZoneForceInput {
   const EnergySource* energy_source;                    // null: none
   double dt_half;  // t_eval - t^n: dt/2 for the predictor state, 0 for an evaluation at t^n
   double t_eval;   // time of the force evaluation
+  const double* subzone_mass;  // constant subzonal masses per corner (subzonal hourglass options)
 };
 
 // Outputs of Z1, written per zone (null where absent).
@@ -63,7 +65,10 @@ std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, con
   const double *vx = in.vx, *vy = in.vy, *x = in.x, *y = in.y;
   const bool bulk_q = o.viscosity == Viscosity::bulk;
   const bool objective = o.stress_update == StressUpdate::objective;
-  const double hg = o.hourglass_coefficient;
+  const bool subzonal_any = o.hourglass == Hourglass::subzonal || o.hourglass == Hourglass::subzonal_triangles;
+  const bool subzonal = subzonal_any && o.hourglass_coefficient > 0;
+  const Subzones subzones = o.hourglass == Hourglass::subzonal ? Subzones::corners : Subzones::triangles;
+  const double hg = subzonal_any ? 0.0 : o.hourglass_coefficient;
   const bool fb = o.hourglass == Hourglass::flanagan_belytschko;
   std::int64_t failure = kNoFailure;
 
@@ -141,6 +146,10 @@ std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, con
     stress_corner_forces(n, sh, pressure + qz, ax, ay, out.fx + b, out.fy + b);
     // Hourglass force with v* (quads).
     if (hg > 0 && n == 4) add_hourglass_forces(v.x, v.y, ax, ay, area, wx, wy, rho, C, hg, fb, out.fx + b, out.fy + b);
+    // Subzonal pressures (any polygon; docs/algorithm.md §18).
+    if (subzonal)
+      add_subzonal_pressure_forces<N>(v, in.subzone_mass + b, mass, area, std::max(ps.c2, 0.0), o.hourglass_coefficient,
+                                      subzones, out.fx + b, out.fy + b);
   }
   return failure;
 }

@@ -1,5 +1,5 @@
 // Simulation set-up: masses (constant in time), initial state, boundary conditions and the
-// choice of kernels (NUMERICS sections 1, 9; ARCHITECTURE "skip what a scene doesn't need").
+// choice of kernels (docs/algorithm.md §2, §10, §12): features a scene does not use are not set up.
 #include <algorithm>
 #ifdef __GLIBC__
 #include <malloc.h>
@@ -50,7 +50,7 @@ void setup_edge_continuation(Simulation::Impl& s) {
     for (Index k = 0; k < n; ++k) edge_zone[{m.corner_point[b + k], m.corner_point[b + (k + 1) % n]}] = z;
   }
   // Ratio used where an edge has no neighbour: 1 (mirror image) at walls, symmetry planes,
-  // pistons and periodic sides; 0 at free and pressure boundaries (NUMERICS section 7).
+  // pistons and periodic sides; 0 at free and pressure boundaries (docs/algorithm.md §5).
   std::map<std::pair<Index, Index>, float> boundary_ratio;
   std::set<std::pair<Index, Index>> mirror_edges;  // walls, symmetry planes, pistons
   for (const auto& bc : s.problem.boundaries) {
@@ -143,7 +143,7 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
   // Every state array, sized by the state table (what the scene needs, nothing more).
   allocate_state(*this);
 
-  // Initial density and energy at zone centres; corner masses rho^0 A_c^0 (NUMERICS section 1).
+  // Initial density and energy at zone centres; corner masses rho^0 A_c^0 (docs/algorithm.md §2).
   std::vector<double> corner_area(kMaxZoneVertices);
   const bool subzonal = opt.hourglass == Hourglass::subzonal || opt.hourglass == Hourglass::subzonal_triangles;
   const Subzones subzones = opt.hourglass == Hourglass::subzonal ? Subzones::corners : Subzones::triangles;

@@ -82,7 +82,7 @@ EnergyAudit Simulation::energy() const {
   a.boundary_work = impl_->boundary_work;
   a.source_work = impl_->source_work;
   const double w = a.boundary_work + a.source_work;
-  // NUMERICS section 9: normalise by max(E0, |W|, E), not E0 alone.
+  // docs/algorithm.md §11: normalise by max(E0, |W|, E), not E0 alone (E0 is 40x smaller than W on the piston).
   const double scale = std::max({std::abs(a.initial), std::abs(w), std::abs(a.total)});
   a.relative_error = scale > 0 ? (a.total - a.initial - w) / scale : 0.0;
   return a;

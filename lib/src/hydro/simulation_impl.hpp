@@ -20,7 +20,7 @@ struct ZoneRange {
   int material = 0;
 };
 
-// A point with one or two velocity constraints n_i . v = g_i(t) (NUMERICS section 9).
+// A point with one or two velocity constraints n_i . v = g_i(t) (docs/algorithm.md §10).
 struct PointConstraint {
   Index point = 0;
   int count = 0;                       // 1 or 2 independent normals

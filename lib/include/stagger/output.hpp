@@ -46,10 +46,15 @@ public:
   const std::vector<std::pair<double, std::string>>& entries() const { return entries_; }
   /// Replaces the entries (restart from a checkpoint); the file is rewritten on the next add().
   void restore(std::vector<std::pair<double, std::string>> entries) { entries_ = std::move(entries); }
+  /// Marks the last entry as the last good state of a run that stopped (an XML comment after
+  /// it, with `why`) and rewrites the .pvd.
+  void mark_last_good_state(const std::string& why);
 
 private:
+  void write() const;
   std::string path_;
   std::vector<std::pair<double, std::string>> entries_;
+  std::string last_good_note_;
 };
 
 /// One row per recorded cycle: time, cycle, dt, kinetic, internal, boundary_work,
@@ -79,6 +84,11 @@ struct RunSummary {
   double loop_seconds = 0;       ///< time loop alone (for zone_cycles_per_second)
   int threads = 1;               ///< OpenMP threads used
   std::string status = "completed";  ///< or the error message that stopped the run
+  std::string last_dump;         ///< the last .vtu written (empty: dumps off)
+  double last_dump_time = 0;     ///< its time
+  /// The run stopped and the last dump holds its last good state (what was committed
+  /// before the step that failed); docs/output.md.
+  bool last_good_state = false;
   NamedValues errors;            ///< error norms from the reference (L1_density, ...)
   NamedValues diagnostics;       ///< other reference figures (shock position, ...)
 };

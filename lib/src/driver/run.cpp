@@ -317,11 +317,25 @@ public:
     // so that the user sees where it went wrong).
     if (state_.last_history_cycle != simulation_.cycle()) record_history();
     if (control_.dumps && state_.last_dump_time != simulation_.time()) dump();
+    // A failed step commits nothing (docs/algorithm.md §9), so the state just dumped is the
+    // last good one: say so in the .pvd, the summary and the message.
+    if (!failure.empty() && control_.dumps && !pvd_.entries().empty()) {
+      char where[96];
+      std::snprintf(where, sizeof where, "cycle %ld, t = %.9g", simulation_.cycle(), simulation_.time());
+      pvd_.mark_last_good_state(failure);
+      failure += std::string("; the last good state (") + where + ") is dumped as '" +
+                 (directory_ / pvd_.entries().back().second).string() + "'";
+    }
 
     RunResult result;
     result.completed = failure.empty();
     result.message = failure;
     RunSummary& summary = result.summary;
+    if (control_.dumps && !pvd_.entries().empty()) {
+      summary.last_dump = pvd_.entries().back().second;
+      summary.last_dump_time = pvd_.entries().back().first;
+      summary.last_good_state = !result.completed;
+    }
     summary.scene = simulation_.problem().name.empty() ? control_.name : simulation_.problem().name;
     summary.loop_seconds = state_.loop_seconds;
     summary.threads = omp_get_max_threads();

@@ -13,6 +13,8 @@
 #include <cstdint>
 #include <limits>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "hydro/boundary.hpp"
 #include "hydro/kernels/geometry.hpp"
@@ -20,6 +22,7 @@
 #include "hydro/kernels/viscosity_edge.hpp"
 #include "hydro/kernels/zone_end.hpp"
 #include "hydro/kernels/zone_forces.hpp"
+#include "hydro/kernels/zone_validity.hpp"
 #include "hydro/simulation_impl.hpp"
 #include "hydro/state_fields.hpp"
 #include "stagger/error.hpp"
@@ -407,6 +410,21 @@ bool Simulation::Impl::try_step(double dt) {
   return true;
 }
 
+// Remedies for a tangled step that the scene has not already taken (docs/algorithm.md §9).
+static std::string tangling_remedies(const HydroOptions& o) {
+  std::vector<std::string> tips;
+  if (o.hourglass != Hourglass::subzonal_triangles)
+    tips.push_back("numerics.hourglass = \"subzonal_triangles\" with hourglass_coefficient = 2 (docs/algorithm.md §18)");
+  else if (o.hourglass_coefficient < 2)
+    tips.push_back("a larger numerics.hourglass_coefficient (2 is measured to hold a blast in a box)");
+  if (o.cfl > 0.1) tips.push_back("a lower numerics.cfl");
+  if (o.viscosity == Viscosity::bulk && o.q1 < 2) tips.push_back("a larger numerics.q1");
+  tips.push_back("a finer or better-shaped mesh near the zone");
+  std::string text = "try ";
+  for (std::size_t i = 0; i < tips.size(); ++i) text += (i == 0 ? "" : i + 1 == tips.size() ? " or " : ", ") + tips[i];
+  return text;
+}
+
 void Simulation::Impl::step(double t_stop) {
   if (t_stop <= t) return;
   const HydroOptions& o = problem.options;
@@ -452,12 +470,11 @@ void Simulation::Impl::step(double t_stop) {
       // Report the tangled zone at the end of the last attempt.
       std::ostringstream msg;
       msg << "cycle " << cycle << ", t = " << t
-          << ": a zone tangled (non-positive zone or corner area) even with dt = " << dt_taken << " after " << attempt
-          << " retries";
+          << ": a zone tangled (non-positive area, crossing edges or a folded corner) even with dt = " << dt_taken
+          << " after " << attempt << " retries";
       const Index tangled = find_tangled_zone(dt_taken);
       if (tangled >= 0) msg << "; " << describe_zone(*this, tangled);
-      msg << " (the mesh is folding there: add hourglass control, switch to the edge viscosity, lower the cfl or "
-             "refine the mesh; if the zone only turned non-convex, numerics.check_corner_areas = false)";
+      msg << " (the mesh is folding there; " << tangling_remedies(o) << ")";
       throw Error(msg.str());
     }
     dt *= 0.5;
@@ -486,7 +503,8 @@ Index Simulation::Impl::find_tangled_zone(double dt) {
     }
     double ca[kMaxZoneVertices];
     const double smallest_corner = Geometry::corner_areas(v, ca);
-    if (!(Geometry::area(v) > 0) || (problem.options.check_corner_areas && !(smallest_corner > 0))) return z;
+    if (!(Geometry::area(v) > 0) || edges_cross(v) || (problem.options.check_corner_areas && !(smallest_corner > 0)))
+      return z;
   }
   return -1;
 }

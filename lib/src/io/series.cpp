@@ -12,6 +12,18 @@ PvdWriter::PvdWriter(std::string pvd_path) : path_(std::move(pvd_path)) {}
 
 void PvdWriter::add(double time, const std::string& vtu_file) {
   entries_.emplace_back(time, vtu_file);
+  write();
+}
+
+void PvdWriter::mark_last_good_state(const std::string& why) {
+  // "--" may not appear inside an XML comment.
+  std::string note;
+  for (const char c : why) note += (c == '-' && !note.empty() && note.back() == '-') ? ' ' : c;
+  last_good_note_ = note;
+  write();
+}
+
+void PvdWriter::write() const {
   // ParaView's Collection format (VTK has no writer for it): one DataSet per dump.
   std::string text = "<?xml version=\"1.0\"?>\n"
                      "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
@@ -20,6 +32,9 @@ void PvdWriter::add(double time, const std::string& vtu_file) {
     text += "    <DataSet timestep=\"" + io_detail::format_double(t) + "\" group=\"\" part=\"0\" file=\"" +
             io_detail::xml_attribute(file) + "\"/>\n";
   }
+  if (!last_good_note_.empty() && !entries_.empty())
+    text += "    <!-- last good state: the run stopped after this dump: " + io_detail::xml_attribute(last_good_note_) +
+            " -->\n";
   text += "  </Collection>\n</VTKFile>\n";
   write_file_atomically(path_, text);
 }

@@ -44,6 +44,11 @@ void write_summary(const std::string& path, const Simulation& simulation, const 
   text += "  \"zone_cycles_per_second\": " + json_number(rate) + ",\n";
   text += "  \"threads\": " + std::to_string(summary.threads) + ",\n";
   text += "  \"status\": " + json_string(summary.status) + ",\n";
+  // Only a stopped run has it: its last dump holds the last good state.
+  if (summary.last_good_state) {
+    text += "  \"last_good_state\": {\"file\": " + json_string(summary.last_dump) +
+            ", \"time\": " + json_number(summary.last_dump_time) + "},\n";
+  }
   text += "  \"energy\": {\n";
   text += "    \"initial\": " + json_number(energy.initial) + ",\n";
   text += "    \"final\": " + json_number(energy.total) + ",\n";

@@ -14,6 +14,7 @@
 #include "hydro/kernels/time_step.hpp"
 #include "hydro/kernels/zone_model.hpp"
 #include "hydro/kernels/zone_status.hpp"
+#include "hydro/kernels/zone_validity.hpp"
 #include "stagger/problem.hpp"
 
 namespace stagger {
@@ -24,8 +25,8 @@ struct ZoneStateOutput {
   double *grad_xx, *grad_xy, *grad_yx, *grad_yy;  // L(v^{n+1}) on x^{n+1}
 };
 
-// Step 9 for zone z: end geometry (zone area > 0, corner areas > 0 if checked), density,
-// EOS (p times the burn fraction), full sound speed, L(u) on the end geometry (strength) and
+// Step 9 for zone z: end geometry (zone area > 0, no crossing edges, corner areas > 0 if
+// checked), density, EOS (p times the burn fraction), full sound speed, L(u) on the end geometry (strength) and
 // the time-step candidate dt_zone from div u. Shared with the state recomputation (set-up,
 // restart, remap, failed step) so that a restart reproduces it bitwise. Returns the failure
 // code or kNoFailure; writes nothing of the state on failure before the EOS.
@@ -36,7 +37,9 @@ template <int N, class Geometry, class Eos>
                                                      double& dt_zone) {
   double ca[kMaxZoneVertices], ax[kMaxZoneVertices], ay[kMaxZoneVertices];
   const double area = Geometry::template area<N>(v);
-  if (!(area > 0) || (o.check_corner_areas && !(Geometry::template corner_areas<N>(v, ca) > 0)))
+  // Always: a non-positive area or crossing edges (docs/algorithm.md §9); optionally also a
+  // folded median-mesh corner.
+  if (!(area > 0) || edges_cross<N>(v) || (o.check_corner_areas && !(Geometry::template corner_areas<N>(v, ca) > 0)))
     return failure_code(z, kTangled);
   const double rho = mass / area;
   eos::PressureSound ps{};

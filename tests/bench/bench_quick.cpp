@@ -161,7 +161,8 @@ TEST(BenchQuick, EnergyAuditStaysAtRoundOffInEveryRun) {
 
 // Each quick stress case has one expected outcome (docs/benchmarks.md, "Stress"): the 20 %
 // perturbed Sod mesh with bulk q and no hourglass control folds and must stop as tangled,
-// naming the zone, cycle and time; Sedov at CFL 0.5 and the 2000-cycle Sod runs must complete.
+// naming the zone, cycle and time; Sedov at CFL 0.5 (the scene's subzonal pressures) and the
+// 2000-cycle Sod runs must complete.
 // A case the bench adds must be given its outcome here.
 TEST(BenchQuick, StressRunsHaveTheirExpectedOutcome) {
   const fs::path& out = quick_bench_output();

@@ -279,6 +279,12 @@ void review_scene(const toml::table& document, Scene& scene, const WarningThresh
                            "units of time.end");
   }
 
+  // An option that weakens a check says so (docs/algorithm.md §9).
+  if (!options.check_corner_areas)
+    warn("numerics.check_corner_areas",
+         "false weakens the tangling check: a zone whose median-mesh corner folds (a chevron) is accepted; "
+         "zones with crossing edges or non-positive area are still refused");
+
   const Untagged untagged = untagged_boundary_edges(problem.mesh);
   if (untagged.count > 0) {
     std::string where;

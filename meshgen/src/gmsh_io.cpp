@@ -622,6 +622,19 @@ PolygonSoup read_isolated(const ChildRun& run, const std::function<PolygonSoup()
   std::lock_guard lock(gmsh_mutex());
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0) throw Error("cannot run gmsh on " + run.path + ": pipe() failed");
+  // The child starts with this address space and resident set (MiB): with its peak resident
+  // set they estimate its address space when it died (ru_maxrss), to tell a crash from
+  // running out of memory where gmsh does not check an allocation.
+  double start_vm_mib = 0, start_rss_mib = 0;
+  if (std::FILE* statm = std::fopen("/proc/self/statm", "r")) {
+    unsigned long pages = 0, resident = 0;
+    if (std::fscanf(statm, "%lu %lu", &pages, &resident) == 2) {
+      const double page_mib = static_cast<double>(::sysconf(_SC_PAGESIZE)) / 1048576.0;
+      start_vm_mib = static_cast<double>(pages) * page_mib;
+      start_rss_mib = static_cast<double>(resident) * page_mib;
+    }
+    std::fclose(statm);
+  }
   std::fflush(nullptr);  // nothing buffered is written twice
   const pid_t child = ::fork();
   if (child < 0) {
@@ -673,10 +686,11 @@ PolygonSoup read_isolated(const ChildRun& run, const std::function<PolygonSoup()
                 "loop or sleep, or the mesh is very fine: raise the limit if it only needs longer");
   if (WIFSIGNALED(status)) {
     const int signal = WTERMSIG(status);
-    const double used_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB
+    const double peak_rss_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB
+    const double used_mib = start_vm_mib + std::max(0.0, peak_rss_mib - start_rss_mib);
     std::string why = run.crash_hint;
     if (run.mib > 0 && used_mib > 0.8 * run.mib)
-      why = "it probably ran out of memory (it used " + limit_text(std::round(used_mib)) + " MiB of its " +
+      why = "it probably ran out of memory (about " + limit_text(std::round(used_mib)) + " MiB of its " +
             limit_text(run.mib) + " MiB limit: scene key mesh.gmsh_memory_limit, stagger mesh --gmsh-memory-limit)";
     throw Error("gmsh crashed (signal " + std::to_string(signal) + ", " + strsignal(signal) + ") " + run.doing +
                 " " + run.path + (why.empty() ? std::string() : ": " + why));

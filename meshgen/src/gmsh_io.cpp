@@ -576,11 +576,15 @@ void out_of_memory() {
   ::close_range(4, ~0U, 0);  // no inherited files (outputs, checkpoints) stay open
   const rlimit no_core{0, 0};
   ::setrlimit(RLIMIT_CORE, &no_core);
+  // AddressSanitizer reserves terabytes of address space for its shadow memory: an
+  // address-space limit would fail every allocation, so sanitizer builds go without it.
+#if !defined(__SANITIZE_ADDRESS__)
   if (run.mib > 0) {
     const auto bytes = static_cast<rlim_t>(std::min(run.mib * 1048576.0, 1e18));
     const rlimit memory{bytes, bytes};
     ::setrlimit(RLIMIT_AS, &memory);
   }
+#endif
   if (run.sandbox) {
     const rlimit no_files{0, 0};  // writes to regular files fail (pipes are not files)
     ::setrlimit(RLIMIT_FSIZE, &no_files);

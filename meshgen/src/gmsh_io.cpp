@@ -960,8 +960,9 @@ std::size_t gmsh_triangles() {
 }
 
 /// A 2D code needs a 2D model: volumes are refused up front (a 3D model's surfaces would
-/// otherwise be projected onto z = 0 and collapse into "duplicate points").
-void require_planar_model(const std::string& path) {
+/// otherwise be projected onto z = 0 and collapse into "duplicate points"). A .msh may list
+/// the volume entities of the model it came from: there only volume elements count.
+void require_planar_model(const std::string& path, bool volume_entities_count) {
   gmsh::vectorpair volumes;
   gmsh::model::getEntities(volumes, 3);
   if (volumes.empty()) return;
@@ -970,6 +971,7 @@ void require_planar_model(const std::string& path) {
   gmsh::model::mesh::getElements(types, element_tags, node_tags, 3, -1);
   std::size_t elements = 0;
   for (const auto& tags : element_tags) elements += tags.size();
+  if (elements == 0 && !volume_entities_count) return;
   throw Error(path + ": a 3D model (" + std::to_string(volumes.size()) + " volume(s)" +
               (elements > 0 ? ", " + std::to_string(elements) + " volume elements" : std::string()) +
               "); stagger is 2D: give it surfaces in the x-y plane (z = 0) only");
@@ -1179,7 +1181,7 @@ PolygonSoup read_geo(const std::string& path, const GeoOptions& options) {
       // recombines with blossom too and then subdivides if triangles are left.
       gmsh::option::setNumber("Mesh.RecombinationAlgorithm", 1);
     }
-    require_planar_model(path);
+    require_planar_model(path, true);
     gmsh::model::mesh::generate(2);
     throw_if_gmsh_error(path, "meshing");
     if (options.triangles == TrianglePolicy::subdivide) {
@@ -1211,7 +1213,7 @@ PolygonSoup read_msh(const std::string& path, const GeoOptions& options) {
   PolygonSoup soup = read_isolated(run, [&] {
     gmsh::open(path);
     throw_if_gmsh_error(path, "reading");
-    require_planar_model(path);
+    require_planar_model(path, false);
     return extract_soup(path);
   });
   // gmsh's subdivision of a discrete (file) mesh duplicates nodes where entities meet, so a

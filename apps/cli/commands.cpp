@@ -83,7 +83,7 @@ options:
   --gmsh-memory-limit MIB        memory (address-space) limit of the gmsh child process
                                  (default 8192; 0: none)
   --allow-geo-commands           allow .geo commands that reach outside the mesh
-                                 (SystemCall, Printf > file, Exit, Sleep, Merge, ...):
+                                 (SystemCall, Printf > file, Exit, Sleep, Save, ...):
                                  this runs arbitrary code, use it on trusted files only
   -h, --help                     this help
 )";

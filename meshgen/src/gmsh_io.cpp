@@ -244,8 +244,6 @@ std::string outside_command(const std::string& word) {
       {"CreateDir", "creates a directory"},
       {"DeleteFile", "deletes a file"},
       {"RenameFile", "renames a file"},
-      {"Merge", "reads (and may run) another file"},
-      {"MergeWithBoundingBox", "reads (and may run) another file"},
       {"Plugin", "runs a gmsh plugin (plugins can write files)"},
   };
   const auto it = commands.find(word);
@@ -288,6 +286,29 @@ void scan_geo_file(const std::filesystem::path& file, std::set<std::filesystem::
         found = at(k) + "'" + word + "(...) >' writes a file";
         return;
       }
+    }
+    if (word == "Merge" || word == "MergeWithBoundingBox") {
+      // CAD and mesh files are read (a .geo is scanned like an Include); gmsh may run
+      // others (e.g. a .py through ONELAB), and a computed name cannot be checked.
+      const bool literal = k + 1 < tokens.size() && tokens[k + 1].kind == GeoToken::string && is_symbol(k + 2, ';');
+      std::string extension = literal ? std::filesystem::path(tokens[k + 1].text).extension().string() : "";
+      std::transform(extension.begin(), extension.end(), extension.begin(),
+                     [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+      static const std::set<std::string> readable = {".step", ".stp", ".iges", ".igs", ".brep", ".brp",
+                                                     ".msh", ".stl", ".geo"};
+      if (!literal || !readable.count(extension)) {
+        found = at(k) + "'" + word + "' of " +
+                (literal ? "a '" + extension + "' file, which gmsh may run" : std::string("a computed file name")) +
+                " (stagger allows Merge of .step, .stp, .iges, .igs, .brep, .brp, .msh, .stl and .geo files named "
+                "by one string)";
+        return;
+      }
+      if (extension == ".geo") {
+        std::filesystem::path merged(tokens[k + 1].text);
+        if (merged.is_relative()) merged = file.parent_path() / merged;
+        scan_geo_file(merged, seen, depth + 1, found);
+      }
+      continue;
     }
     if (word == "Include") {
       if (k + 1 >= tokens.size() || tokens[k + 1].kind != GeoToken::string || !is_symbol(k + 2, ';')) {

@@ -63,10 +63,14 @@ TEST_F(GeoSandbox, ScanFindsCommandsAndNamesFileAndLine) {
   write("sub/inner.geo", "a = 1;\nSleep 100;\n");
   const std::string outer = write("outer.geo", "Include \"sub/inner.geo\";\n");
   EXPECT_EQ(meshgen::find_outside_command(outer), (directory_ / "sub/inner.geo").string() + ":2: 'Sleep' pauses gmsh");
+  // Merge of a CAD or mesh file is allowed; a merged .geo is scanned like an Include.
+  EXPECT_EQ(meshgen::find_outside_command(write("cad.geo", "Merge \"part.STEP\";\nMerge 'sub/mesh.msh';\n")), "");
+  EXPECT_EQ(meshgen::find_outside_command(write("merge_geo.geo", "Merge \"sub/inner.geo\";\n")),
+            (directory_ / "sub/inner.geo").string() + ":2: 'Sleep' pauses gmsh");
   // A number glued to a keyword is still the keyword (gmsh's lexer: "2" then "Exit").
   EXPECT_NE(meshgen::find_outside_command(write("glued.geo", "x = 2;2Exit;\n")).find(":1: 'Exit' ends the process"),
             std::string::npos);
-  for (const std::string command : {"Printf(\"a\") >> \"f.txt\";", "Save \"out.msh\";", "Merge \"a.py\";",
+  for (const std::string command : {"Printf(\"a\") >> \"f.txt\";", "Save \"out.msh\";", "Merge \"a.py\";", "Merge StrCat(\"a\", \".step\");",
                                     "Plugin(Smooth).Run;", "OnelabRun(\"client\");", "CreateDir \"d\";",
                                     "System \"ls\";", "NonBlockingSystemCall \"ls\";", "Include StrCat(\"a\", \".geo\");"})
     EXPECT_NE(meshgen::find_outside_command(write("c.geo", std::string(kSquare) + command + "\n")), "") << command;

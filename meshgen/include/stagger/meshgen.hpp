@@ -29,7 +29,8 @@ struct GeoOptions {
   double time_limit_seconds = 600;  ///< wall-time limit of the gmsh child; 0: none
   double memory_limit_mib = 8192;   ///< address-space limit of the gmsh child (MiB); 0: none
   /// Allow .geo commands that reach outside the mesh (SystemCall, Printf > file, Exit, Sleep,
-  /// Merge, Save, ...). They run arbitrary code; by default they are refused before gmsh runs.
+  /// Save, Merge of a script, ...). They run arbitrary code; by default they are refused
+  /// before gmsh runs.
   bool allow_commands = false;
 };
 

@@ -39,20 +39,20 @@ WORDS = [
 
 def mutate(data, seeds, rng):
     data = bytearray(data)
-    for _ in range(rng.randint(1, 4)):
+    for _ in range(rng.randint(1, 3)):
         choice = rng.random()
-        if choice < 0.2 and data:
+        if choice < 0.1 and data:
             at = rng.randrange(len(data))
             data[at] = rng.randrange(256)
-        elif choice < 0.4 and data:
+        elif choice < 0.3 and data:
             a = rng.randrange(len(data))
             b = min(len(data), a + rng.randint(1, 80))
             del data[a:b]
-        elif choice < 0.55 and data:
+        elif choice < 0.45 and data:
             a = rng.randrange(len(data))
             b = min(len(data), a + rng.randint(1, 80))
             data[a:a] = data[a:b]
-        elif choice < 0.7:
+        elif choice < 0.6:
             other = rng.choice(seeds)
             if other:
                 a = rng.randrange(len(other))

@@ -714,7 +714,10 @@ PolygonSoup read_isolated(const ChildRun& run, const std::function<PolygonSoup()
     const double peak_rss_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB
     const double used_mib = start_vm_mib + std::max(0.0, peak_rss_mib - start_rss_mib);
     std::string why = run.crash_hint;
-    if (run.mib > 0 && used_mib > 0.8 * run.mib)
+    // A failed allocation can be as large as what is already used (a doubling array), so
+    // growing through a good part of the room left is enough to suspect memory.
+    const double room_mib = run.mib - start_vm_mib;
+    if (run.mib > 0 && (used_mib > 0.8 * run.mib || (room_mib > 0 && used_mib - start_vm_mib > 0.3 * room_mib)))
       why = "it probably ran out of memory (about " + limit_text(std::round(used_mib)) + " MiB of its " +
             limit_text(run.mib) + " MiB limit: scene key mesh.gmsh_memory_limit, stagger mesh --gmsh-memory-limit)";
     throw Error("gmsh crashed (signal " + std::to_string(signal) + ", " + strsignal(signal) + ") " + run.doing +

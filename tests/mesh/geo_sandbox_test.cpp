@@ -134,7 +134,7 @@ TEST_F(GeoSandbox, RunningOutOfMemoryIsAnError) {
   // running out ends in a segfault that the error still calls by its name.
   const std::string geo = write("big_list.geo", "Include \"square.geo\";\na[] = {1:3e8};\n");
   meshgen::GeoOptions options;
-  options.memory_limit_mib = vm_kib / 1024 + 64;
+  options.memory_limit_mib = vm_kib / 1024 + 256;
   expect_error([&] { meshgen::read_geo(geo, options); }, {"meshing " + geo, "ran out of memory", "mesh.gmsh_memory_limit"});
   // Where the allocation is checked (operator new), the child says so itself.
   const std::string fine = write("fine.geo", "Include \"square.geo\";\nMesh.CharacteristicLengthMax = 3e-4;\n");

@@ -245,14 +245,18 @@ void check_overlaps(const Mesh& mesh, const std::vector<std::size_t>& polygon_of
   const double width = std::max(xmax - xmin, 1e-300), height = std::max(ymax - ymin, 1e-300);
   const double cells_wanted = std::max(1.0, static_cast<double>(side.size()));
   const double h = std::sqrt(width * height / cells_wanted);
-  const auto nx = static_cast<std::int64_t>(std::clamp(std::ceil(width / h), 1.0, 4096.0 * 16));
-  const auto ny = static_cast<std::int64_t>(std::clamp(std::ceil(height / h), 1.0, 4096.0 * 16));
-  const auto cell_x = [&](double x) {
-    return std::clamp<std::int64_t>(static_cast<std::int64_t>((x - xmin) / width * static_cast<double>(nx)), 0, nx - 1);
+  // Extents that overflow (points near +-1e308 in different zones) get one cell.
+  const bool gridded = std::isfinite(width) && std::isfinite(height) && std::isfinite(h) && h > 0;
+  const auto cells = [&](double extent) {
+    return gridded ? static_cast<std::int64_t>(std::clamp(std::ceil(extent / h), 1.0, 65536.0)) : std::int64_t{1};
   };
-  const auto cell_y = [&](double y) {
-    return std::clamp<std::int64_t>(static_cast<std::int64_t>((y - ymin) / height * static_cast<double>(ny)), 0, ny - 1);
+  const std::int64_t nx = cells(width), ny = cells(height);
+  const auto cell_of = [](double t, std::int64_t n) {  // t in [0, 1] -> 0..n-1 (NaN -> 0)
+    const double c = std::floor(t * static_cast<double>(n));
+    return c >= 0 ? static_cast<std::int64_t>(std::min(c, static_cast<double>(n - 1))) : std::int64_t{0};
   };
+  const auto cell_x = [&](double x) { return cell_of((x - xmin) / width, nx); };
+  const auto cell_y = [&](double y) { return cell_of((y - ymin) / height, ny); };
   // Buckets (CSR) of items by the cells their bounding boxes cover.
   struct Box {
     std::int64_t i0, i1, j0, j1;

@@ -5,9 +5,9 @@
 #include <omp.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <sstream>

@@ -106,9 +106,23 @@ public:
       for (const char* prefix : {"Error   : ", "Error : ", "Error: "})
         if (text->rfind(prefix, 0) == 0) text->erase(0, std::string(prefix).size());
     }
-    if (first.empty()) return last;
-    if (last.empty() || first.find(last) != std::string::npos) return first;
-    return first + " ... " + last;
+    std::string text = first.empty() ? last
+                       : last.empty() || first.find(last) != std::string::npos ? first
+                                                                                : first + " ... " + last;
+    // gmsh quotes the offending text of the file: control characters (a vertical tab, an
+    // escape sequence) must not reach the user's terminal or split the one error line.
+    std::string clean;
+    for (const char ch : text) {
+      const auto byte = static_cast<unsigned char>(ch);
+      if (byte < 0x20 || byte == 0x7f) {
+        char escaped[8];
+        std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
+        clean += escaped;
+      } else {
+        clean += ch;
+      }
+    }
+    return clean;
   }
 
 private:
@@ -590,7 +604,12 @@ void out_of_memory() {
   const int null_fd = ::open("/dev/null", O_RDWR);
   if (null_fd >= 0) {
     ::dup2(null_fd, STDIN_FILENO);
-    if (!env_flag("STAGGER_GMSH_VERBOSE")) ::dup2(null_fd, STDOUT_FILENO);
+    // Quiet unless asked: also stderr, where glibc reports e.g. a double free in gmsh
+    // (the parent's error line says that gmsh crashed).
+    if (!env_flag("STAGGER_GMSH_VERBOSE")) {
+      ::dup2(null_fd, STDOUT_FILENO);
+      ::dup2(null_fd, STDERR_FILENO);
+    }
   }
   ::dup2(out_fd, 3);
   ::fcntl(3, F_SETFD, FD_CLOEXEC);  // programs the .geo may start (allowed) do not hold the pipe
@@ -1188,8 +1207,8 @@ PolygonSoup read_geo(const std::string& path, const GeoOptions& options) {
   run.mib = options.memory_limit_mib;
   run.sandbox = !options.allow_commands;
   run.crash_hint =
-      "gmsh 4.8 crashes on some geometries, e.g. with Mesh.Algorithm = 8 set for one surface "
-      "(MeshAlgorithm Surface{...} = 8): use 6 there, or run 'gmsh -2 " + path + "' to see where it fails";
+      "gmsh 4.8 crashes on some inputs, e.g. MeshAlgorithm Surface{...} = 8 (use 6 there) or a command "
+      "after which it does not recover from an error; run 'gmsh -2 " + path + "' to see where it fails";
   PolygonSoup soup = read_isolated(run, [&] {
     gmsh::open(wrapper.file());
     throw_if_gmsh_error(path, "reading");

@@ -151,6 +151,20 @@ TEST_F(GeoSandbox, GmshCrashAndExitAreErrorsNamingTheFile) {
   expect_error([&] { meshgen::read_geo(exit, options); }, {"gmsh ended before it finished meshing " + exit, "Exit"});
 }
 
+TEST_F(GeoSandbox, ControlCharactersInGmshMessagesAreEscaped) {
+  // Found by scripts/fuzz_geo.py: gmsh quotes the bad token, here a vertical tab.
+  const std::string geo = write("vtab.geo", "Point(1) = {0, 0, 0, 0.1};\nPoint(2) = {1, 0, 0, 0.1} \v;\n");
+  try {
+    meshgen::read_geo(geo);
+    ADD_FAILURE() << "expected stagger::Error";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("line 2"), std::string::npos) << what;
+    EXPECT_NE(what.find("\\x0b"), std::string::npos) << what;
+    for (const char ch : what) EXPECT_GE(static_cast<unsigned char>(ch), 0x20) << what;
+  }
+}
+
 TEST_F(GeoSandbox, MeshingLeavesOpenMpAsTheUserSetIt) {
   const std::string geo = write("square.geo", kSquare);
   const int before = omp_get_max_threads();

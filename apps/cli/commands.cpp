@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -46,7 +47,8 @@ first one's pid); a fresh run removes the previous run's <scene>.pvd and
 <scene>_NNNNNN.vtu there first. Warnings about the set-up (docs/scenes.md) are printed
 on stderr before the first step.
 
-A progress line (cycle, time, dt, ETA) is shown when stderr is a terminal. At the end
+A progress line (cycle, time, dt, ETA) is shown on stderr: refreshed in place on a
+terminal, one line every 10 s otherwise (logs). At the end
 a summary is printed: cycles, final time, zone-cycles per second, the energy audit and
 any error norms. Exit status: 0 if the run reached time.end, 1 otherwise (the reason is
 one line on stderr and in summary.json's "status").
@@ -85,6 +87,13 @@ options:
                                  what to do with triangles left after recombination
                                  (default accept)
   --check                        exit 1 if any zone is non-convex
+  --gmsh-time-limit SECONDS      wall-time limit of the gmsh child process (default 600;
+                                 0: none)
+  --gmsh-memory-limit MIB        memory (address-space) limit of the gmsh child process
+                                 (default 8192; 0: none)
+  --allow-geo-commands           allow .geo commands that reach outside the mesh
+                                 (SystemCall, Printf > file, Exit, Sleep, Save, ...):
+                                 this runs arbitrary code, use it on trusted files only
   -h, --help                     this help
 )";
 
@@ -180,7 +189,7 @@ int run_command(const std::vector<std::string>& args) {
   Scene scene = load_scene(scene_path, overrides_of(arguments));
   RunControl control = scene.control;
   if (arguments.has("--out")) control.output_directory = arguments.value("--out");
-  control.progress = !quiet && isatty(STDERR_FILENO) != 0;
+  control.progress = !quiet;  // every 0.2 s on a terminal, a line every 10 s in a log
   for (const auto& note : scene.notes)
     if (!quiet) std::cerr << "stagger: note: " << note << "\n";
   print_warnings(scene);
@@ -239,9 +248,26 @@ int mesh_command(const std::vector<std::string>& args) {
                             {{"--output", "-o", true, false},
                              {"--set", "", true, true},
                              {"--triangles", "", true, false},
-                             {"--check", "", false, false}});
+                             {"--check", "", false, false},
+                             {"--gmsh-time-limit", "", true, false},
+                             {"--gmsh-memory-limit", "", true, false},
+                             {"--allow-geo-commands", "", false, false}});
   const std::string input = single_positional(arguments, "stagger mesh", "mesh file (.geo or .msh)");
   meshgen::GeoOptions options;
+  for (const auto& [flag, limit] : {std::pair{"--gmsh-time-limit", &options.time_limit_seconds},
+                                    std::pair{"--gmsh-memory-limit", &options.memory_limit_mib}}) {
+    if (!arguments.has(flag)) continue;
+    const std::string text = arguments.value(flag);
+    std::size_t used = 0;
+    try {
+      *limit = std::stod(text, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != text.size() || !(*limit >= 0) || !std::isfinite(*limit))
+      throw UsageError(std::string(flag) + " '" + text + "': give a number >= 0 (0: no limit)");
+  }
+  options.allow_commands = arguments.flag("--allow-geo-commands");
   for (const auto& text : arguments.values("--set")) {
     const auto [name, value_text] = split_assignment("--set", text);
     std::size_t used = 0;

@@ -1,24 +1,41 @@
 /// @file gmsh_io.cpp
 /// .geo and .msh files through the gmsh 4.8 C++ API, and MSH 4.1 output. gmsh is a global
 /// singleton that is not thread-safe: every use holds one mutex and one RAII session
-/// (initialize ... finalize), so no gmsh state leaks from one call to the next.
+/// (initialize ... finalize), so no gmsh state leaks from one call to the next. Reading and
+/// meshing run in a forked child process (docs/mesh.md, "gmsh in a child process").
 #include <gmsh.h>
+#include <omp.h>
 
 #include <algorithm>
-#include <cerrno>
-#include <cstdio>
-#include <cstring>
-#include <stdexcept>
 #include <cctype>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <map>
 #include <mutex>
+#include <new>
+#include <set>
 #include <sstream>
+#include <stdexcept>
 #include <unordered_map>
 
+#include <fcntl.h>
+#include <linux/audit.h>
+#include <linux/filter.h>
+#include <linux/sched.h>
+#include <linux/seccomp.h>
+#include <poll.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -43,14 +60,20 @@ std::string number_text(double value) {
   return s.str();
 }
 
+bool env_flag(const char* name) {
+  const char* value = std::getenv(name);
+  return value && *value && *value != '0';
+}
+
 /// One gmsh session: initialize, quiet terminal, logger on; finalize on destruction.
+/// gmsh::initialize sets OpenMP to gmsh's own thread count (1): the caller's setting is
+/// restored afterwards, so an in-process session does not leave stagger single-threaded.
 class GmshSession {
 public:
-  GmshSession() {
+  GmshSession() : threads_(omp_get_max_threads()) {
     gmsh::initialize(0, nullptr, false);
     // STAGGER_GMSH_VERBOSE=1 shows gmsh's own messages (debugging a .geo).
-    const char* verbose = std::getenv("STAGGER_GMSH_VERBOSE");
-    gmsh::option::setNumber("General.Terminal", verbose && *verbose && *verbose != '0' ? 1 : 0);
+    gmsh::option::setNumber("General.Terminal", env_flag("STAGGER_GMSH_VERBOSE") ? 1 : 0);
     // Errors are read from the logger after each step: with the default (2) gmsh throws
     // from inside its mesher, where an exception can end in std::terminate.
     gmsh::option::setNumber("General.AbortOnError", 0);
@@ -62,6 +85,7 @@ public:
       gmsh::finalize();
     } catch (...) {  // a destructor must not throw; gmsh throws std::string
     }
+    omp_set_num_threads(threads_);
   }
   GmshSession(const GmshSession&) = delete;
   GmshSession& operator=(const GmshSession&) = delete;
@@ -82,14 +106,32 @@ public:
       for (const char* prefix : {"Error   : ", "Error : ", "Error: "})
         if (text->rfind(prefix, 0) == 0) text->erase(0, std::string(prefix).size());
     }
-    if (first.empty()) return last;
-    if (last.empty() || first.find(last) != std::string::npos) return first;
-    return first + " ... " + last;
+    std::string text = first.empty() ? last
+                       : last.empty() || first.find(last) != std::string::npos ? first
+                                                                                : first + " ... " + last;
+    // gmsh quotes the offending text of the file: control characters (a vertical tab, an
+    // escape sequence) must not reach the user's terminal or split the one error line.
+    std::string clean;
+    for (const char ch : text) {
+      const auto byte = static_cast<unsigned char>(ch);
+      if (byte < 0x20 || byte == 0x7f) {
+        char escaped[8];
+        std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
+        clean += escaped;
+      } else {
+        clean += ch;
+      }
+    }
+    return clean;
   }
+
+private:
+  int threads_;
 };
 
 /// Runs `body` in a gmsh session, turning gmsh's std::string exceptions and logged errors
-/// into stagger::Error naming the file.
+/// into stagger::Error naming the file. std::bad_alloc passes through (the caller knows
+/// the memory limit).
 template <class Body>
 auto in_gmsh_session(const std::string& path, Body body) {
   GmshSession session;
@@ -100,9 +142,14 @@ auto in_gmsh_session(const std::string& path, Body body) {
     throw Error("gmsh failed on " + path + ": " + (logged.empty() ? message : logged));
   } catch (const Error&) {
     throw;
+  } catch (const std::bad_alloc&) {
+    // A corrupt count (e.g. an unknown element type) also ends here, after gmsh logged it.
+    const std::string logged = GmshSession::errors();
+    if (logged.empty()) throw;
+    throw Error("gmsh failed on " + path + ": " + logged + "; the file is corrupt or not a valid MSH/.geo file");
   } catch (const std::exception& failure) {
     // gmsh's readers trust the file: a corrupt count or element type ends in e.g.
-    // std::bad_array_new_length or std::bad_alloc (found by fuzzing read_msh).
+    // std::bad_array_new_length (found by fuzzing read_msh).
     const std::string logged = GmshSession::errors();
     throw Error("gmsh failed on " + path + ": " + (logged.empty() ? std::string(failure.what()) : logged) +
                 "; the file is corrupt or not a valid MSH/.geo file");
@@ -112,15 +159,196 @@ auto in_gmsh_session(const std::string& path, Body body) {
 template <class Body>
 auto with_gmsh(const std::string& path, Body body) {
   std::lock_guard lock(gmsh_mutex());
-  return in_gmsh_session(path, body);
+  try {
+    return in_gmsh_session(path, body);
+  } catch (const std::bad_alloc&) {
+    throw Error("gmsh ran out of memory on " + path);
+  }
 }
 
-// --- Reading a .msh in a child process -------------------------------------------------
-// gmsh 4.8's MSH reader trusts the file: an element that names a missing node, or a
-// corrupt section, can crash it (segfault, double free) instead of reporting an error
-// (found by fuzzing read_msh, docs/robustness.md). The reader therefore runs in a forked
-// child that sends the soup (or the error) back through a pipe; a crash becomes a
-// stagger::Error naming the file. STAGGER_GMSH_IN_PROCESS=1 reads in-process (debugging).
+// --- .geo commands that reach outside the mesh -----------------------------------------
+// A .geo file is a program: gmsh 4.8's language can run shell commands, write, create and
+// merge files, sleep and end the process. These are refused before gmsh runs unless the
+// user allows them (GeoOptions::allow_commands); the child's sandbox (below) is the second
+// line of defence. The scanner follows gmsh's lexer (Parser/Gmsh.l): comments /* */ and
+// //, strings in "..." or '...' without escapes, identifiers [A-Za-z_][A-Za-z0-9_]*,
+// numbers, and keywords matched as whole identifiers, case-sensitively.
+
+struct GeoToken {
+  enum Kind { identifier, string, number, symbol } kind;
+  std::string text;
+  int line;
+};
+
+std::vector<GeoToken> geo_tokens(const std::string& text) {
+  std::vector<GeoToken> tokens;
+  const auto alpha = [](char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; };
+  const auto digit = [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; };
+  std::size_t i = 0;
+  int line = 1;
+  const std::size_t n = text.size();
+  const auto exponent = [&](std::size_t k) {  // length of [Ee][-+]?digit+ at k, or 0
+    if (k >= n || (text[k] != 'e' && text[k] != 'E')) return std::size_t{0};
+    std::size_t j = k + 1;
+    if (j < n && (text[j] == '+' || text[j] == '-')) ++j;
+    if (j >= n || !digit(text[j])) return std::size_t{0};
+    while (j < n && digit(text[j])) ++j;
+    return j - k;
+  };
+  while (i < n) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line;
+      ++i;
+    } else if (std::isspace(static_cast<unsigned char>(c))) {
+      ++i;
+    } else if (c == '/' && i + 1 < n && text[i + 1] == '*') {
+      const std::size_t close = text.find("*/", i + 2);
+      const std::size_t stop = close == std::string::npos ? n : close + 2;
+      line += static_cast<int>(std::count(text.begin() + static_cast<std::ptrdiff_t>(i),
+                                          text.begin() + static_cast<std::ptrdiff_t>(stop), '\n'));
+      i = stop;
+    } else if (c == '/' && i + 1 < n && text[i + 1] == '/') {
+      while (i < n && text[i] != '\n') ++i;
+    } else if (c == '"' || c == '\'') {
+      const std::size_t close = text.find(c, i + 1);
+      const std::size_t stop = close == std::string::npos ? n : close;
+      tokens.push_back({GeoToken::string, text.substr(i + 1, stop - i - 1), line});
+      line += static_cast<int>(std::count(text.begin() + static_cast<std::ptrdiff_t>(i),
+                                          text.begin() + static_cast<std::ptrdiff_t>(stop), '\n'));
+      i = stop == n ? n : stop + 1;
+    } else if (alpha(c)) {
+      std::size_t j = i;
+      while (j < n && (alpha(text[j]) || digit(text[j]))) ++j;
+      tokens.push_back({GeoToken::identifier, text.substr(i, j - i), line});
+      i = j;
+    } else if (digit(c) || (c == '.' && i + 1 < n && digit(text[i + 1]))) {
+      // Longest of {digit}+, {digit}+"."{digit}*{exp}?, {digit}*"."{digit}+{exp}?, {digit}+{exp}.
+      std::size_t j = i;
+      while (j < n && digit(text[j])) ++j;
+      if (j < n && text[j] == '.') {
+        ++j;
+        while (j < n && digit(text[j])) ++j;
+      }
+      j += exponent(j);
+      tokens.push_back({GeoToken::number, text.substr(i, j - i), line});
+      i = j;
+    } else {
+      tokens.push_back({GeoToken::symbol, std::string(1, c), line});
+      ++i;
+    }
+  }
+  return tokens;
+}
+
+/// What a command does, for the message; "" if the word is not refused.
+std::string outside_command(const std::string& word) {
+  static const std::map<std::string, std::string> commands = {
+      {"SystemCall", "runs a shell command"},
+      {"System", "runs a shell command"},
+      {"NonBlockingSystemCall", "runs a shell command"},
+      {"Shell", "runs a shell command"},
+      {"OnelabRun", "runs an external program"},
+      {"OnelabAction", "drives external programs"},
+      {"SendToServer", "talks to an external program"},
+      {"Exit", "ends the process"},
+      {"Sleep", "pauses gmsh"},
+      {"Save", "writes a file"},
+      {"Print", "writes a file"},
+      {"CreateDir", "creates a directory"},
+      {"DeleteFile", "deletes a file"},
+      {"RenameFile", "renames a file"},
+      {"Plugin", "runs a gmsh plugin (plugins can write files)"},
+  };
+  const auto it = commands.find(word);
+  return it == commands.end() ? std::string() : it->second;
+}
+
+void scan_geo_file(const std::filesystem::path& file, std::set<std::filesystem::path>& seen, int depth,
+                   std::string& found) {
+  std::error_code ec;
+  const auto canonical = std::filesystem::weakly_canonical(file, ec);
+  if (!seen.insert(ec ? file : canonical).second) return;
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return;  // gmsh reports a missing include itself
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::vector<GeoToken> tokens = geo_tokens(text);
+  const std::string name = file.string();
+  const auto at = [&](std::size_t k) { return name + ":" + std::to_string(tokens[k].line) + ": "; };
+  const auto is_symbol = [&](std::size_t k, char c) {
+    return k < tokens.size() && tokens[k].kind == GeoToken::symbol && tokens[k].text[0] == c;
+  };
+  for (std::size_t k = 0; k < tokens.size() && found.empty(); ++k) {
+    if (tokens[k].kind != GeoToken::identifier) continue;
+    const std::string& word = tokens[k].text;
+    // Option names (Print.Format, Mesh.Algorithm) are not commands.
+    if (is_symbol(k + 1, '.') || (k > 0 && is_symbol(k - 1, '.'))) continue;
+    if (const std::string what = outside_command(word); !what.empty()) {
+      found = at(k) + "'" + word + "' " + what;
+      return;
+    }
+    if (word == "Printf" || word == "Error" || word == "Warning") {
+      // Printf(...) > "file" and >> "file" write files.
+      std::size_t j = k + 1;
+      if (!is_symbol(j, '(')) continue;
+      int depth_paren = 0;
+      for (; j < tokens.size(); ++j) {
+        if (is_symbol(j, '(')) ++depth_paren;
+        if (is_symbol(j, ')') && --depth_paren == 0) break;
+      }
+      if (is_symbol(j + 1, '>')) {
+        found = at(k) + "'" + word + "(...) >' writes a file";
+        return;
+      }
+    }
+    if (word == "Merge" || word == "MergeWithBoundingBox") {
+      // CAD and mesh files are read (a .geo is scanned like an Include); gmsh may run
+      // others (e.g. a .py through ONELAB), and a computed name cannot be checked.
+      const bool literal = k + 1 < tokens.size() && tokens[k + 1].kind == GeoToken::string && is_symbol(k + 2, ';');
+      std::string extension = literal ? std::filesystem::path(tokens[k + 1].text).extension().string() : "";
+      std::transform(extension.begin(), extension.end(), extension.begin(),
+                     [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+      static const std::set<std::string> readable = {".step", ".stp", ".iges", ".igs", ".brep", ".brp",
+                                                     ".msh", ".stl", ".geo"};
+      if (!literal || !readable.count(extension)) {
+        found = at(k) + "'" + word + "' of " +
+                (literal ? "a '" + extension + "' file, which gmsh may run" : std::string("a computed file name")) +
+                " (stagger allows Merge of .step, .stp, .iges, .igs, .brep, .brp, .msh, .stl and .geo files named "
+                "by one string)";
+        return;
+      }
+      if (extension == ".geo") {
+        std::filesystem::path merged(tokens[k + 1].text);
+        if (merged.is_relative()) merged = file.parent_path() / merged;
+        scan_geo_file(merged, seen, depth + 1, found);
+      }
+      continue;
+    }
+    if (word == "Include") {
+      if (k + 1 >= tokens.size() || tokens[k + 1].kind != GeoToken::string || !is_symbol(k + 2, ';')) {
+        found = at(k) + "'Include' with a computed file name cannot be checked; write the name as one string";
+        return;
+      }
+      if (depth > 20) {
+        found = at(k) + "'Include' nests more than 20 files deep";
+        return;
+      }
+      std::filesystem::path included(tokens[k + 1].text);
+      if (included.is_relative()) included = file.parent_path() / included;
+      scan_geo_file(included, seen, depth + 1, found);
+    }
+  }
+}
+
+// --- Reading and meshing in a child process ---------------------------------------------
+// gmsh 4.8 trusts its input: a corrupt .msh, or a .geo that sets Mesh.Algorithm = 8 on a
+// surface, can crash it (segfault, double free); a .geo can loop for ever or exhaust
+// memory; and gmsh::initialize resets OpenMP to one thread. gmsh therefore runs in a forked
+// child that sends the soup (or the error) back through a pipe, under an address-space limit
+// (setrlimit RLIMIT_AS) and a wall-time limit (the parent kills it), with stdout silenced
+// unless STAGGER_GMSH_VERBOSE=1. Without allow_commands the child also runs in a seccomp
+// sandbox that refuses to start programs, open files for writing, or create, delete or
+// rename files. STAGGER_GMSH_IN_PROCESS=1 runs gmsh in-process (debugging; no limits).
 
 class Packer {
 public:
@@ -207,6 +435,8 @@ std::string pack(const PolygonSoup& soup) {
   }
   p.strings(soup.tag_names);
   p.string(soup.source);
+  p.value(soup.unassigned_elements);
+  p.strings(soup.notes);
   return p.bytes();
 }
 
@@ -231,6 +461,8 @@ PolygonSoup unpack(const std::string& bytes) {
   }
   soup.tag_names = u.strings();
   soup.source = u.string();
+  soup.unassigned_elements = u.value<std::int64_t>();
+  soup.notes = u.strings();
   if (!u.at_end()) throw std::runtime_error("trailing data");
   return soup;
 }
@@ -246,66 +478,279 @@ bool write_all(int fd, const std::string& bytes) {
   return true;
 }
 
+/// The sandbox of a child that runs gmsh on untrusted input: a seccomp filter that makes
+/// the system calls that start programs, open files for writing, or create, delete, rename
+/// or change files fail with EPERM (threads may still be created). Returns false where it
+/// is not supported; the time and memory limits still apply there.
+bool install_sandbox() {
+#if defined(__x86_64__) || defined(__aarch64__)
+#if defined(__x86_64__)
+  constexpr std::uint32_t arch = AUDIT_ARCH_X86_64;
+#else
+  constexpr std::uint32_t arch = AUDIT_ARCH_AARCH64;
+#endif
+  enum Label { deny, no_system_call, open_check, openat_check, clone_check, kill };
+  std::vector<sock_filter> code;
+  std::vector<std::pair<std::size_t, Label>> fixups;
+  std::map<Label, std::size_t> labels;
+  const auto stmt = [&](std::uint16_t op, std::uint32_t k) { code.push_back(BPF_STMT(op, k)); };
+  const auto jump_if = [&](std::uint16_t test, std::uint32_t k, Label to) {
+    code.push_back(BPF_JUMP(BPF_JMP | test | BPF_K, k, 0, 0));
+    fixups.emplace_back(code.size() - 1, to);
+  };
+  const auto label = [&](Label l) { labels[l] = code.size(); };
+  const auto argument = [](int i) {
+    return static_cast<std::uint32_t>(offsetof(seccomp_data, args) + 8 * static_cast<std::size_t>(i));
+  };
+  constexpr std::uint32_t write_flags = O_WRONLY | O_RDWR | O_CREAT | O_TRUNC | O_APPEND;
+  stmt(BPF_LD | BPF_W | BPF_ABS, static_cast<std::uint32_t>(offsetof(seccomp_data, arch)));
+  code.push_back(BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, arch, 1, 0));
+  stmt(BPF_RET | BPF_K, SECCOMP_RET_KILL_PROCESS);
+  stmt(BPF_LD | BPF_W | BPF_ABS, static_cast<std::uint32_t>(offsetof(seccomp_data, nr)));
+#if defined(__x86_64__)
+  jump_if(BPF_JGE, 0x40000000U, kill);  // the x32 ABI: not used by stagger
+#endif
+  const long denied[] = {
+      SYS_execve, SYS_execveat, SYS_unlinkat, SYS_renameat, SYS_mkdirat, SYS_linkat, SYS_symlinkat,
+      SYS_fchmod, SYS_fchmodat, SYS_fchown, SYS_fchownat, SYS_truncate, SYS_mknodat, SYS_socket,
+      SYS_ptrace, SYS_kill, SYS_process_vm_writev, SYS_open_by_handle_at,
+#if defined(__x86_64__)
+      SYS_fork, SYS_vfork, SYS_creat, SYS_unlink, SYS_rmdir, SYS_rename, SYS_mkdir, SYS_link, SYS_symlink,
+      SYS_chmod, SYS_chown, SYS_lchown, SYS_mknod,
+#endif
+#ifdef SYS_renameat2
+      SYS_renameat2,
+#endif
+  };
+  for (const long nr : denied) jump_if(BPF_JEQ, static_cast<std::uint32_t>(nr), deny);
+#ifdef SYS_clone3
+  jump_if(BPF_JEQ, SYS_clone3, no_system_call);  // glibc then falls back to clone
+#endif
+#ifdef SYS_openat2
+  jump_if(BPF_JEQ, SYS_openat2, no_system_call);
+#endif
+#if defined(__x86_64__)
+  jump_if(BPF_JEQ, SYS_open, open_check);
+#endif
+  jump_if(BPF_JEQ, SYS_openat, openat_check);
+  jump_if(BPF_JEQ, SYS_clone, clone_check);
+  stmt(BPF_RET | BPF_K, SECCOMP_RET_ALLOW);
+  label(deny);
+  stmt(BPF_RET | BPF_K, SECCOMP_RET_ERRNO | (EPERM & SECCOMP_RET_DATA));
+  label(no_system_call);
+  stmt(BPF_RET | BPF_K, SECCOMP_RET_ERRNO | (ENOSYS & SECCOMP_RET_DATA));
+  label(kill);
+  stmt(BPF_RET | BPF_K, SECCOMP_RET_KILL_PROCESS);
+  label(open_check);  // open(path, flags, mode)
+  stmt(BPF_LD | BPF_W | BPF_ABS, argument(1));
+  code.push_back(BPF_JUMP(BPF_JMP | BPF_JSET | BPF_K, write_flags, 1, 0));
+  stmt(BPF_RET | BPF_K, SECCOMP_RET_ALLOW);
+  stmt(BPF_RET | BPF_K, SECCOMP_RET_ERRNO | (EPERM & SECCOMP_RET_DATA));
+  label(openat_check);  // openat(dirfd, path, flags, mode)
+  stmt(BPF_LD | BPF_W | BPF_ABS, argument(2));
+  code.push_back(BPF_JUMP(BPF_JMP | BPF_JSET | BPF_K, write_flags, 1, 0));
+  stmt(BPF_RET | BPF_K, SECCOMP_RET_ALLOW);
+  stmt(BPF_RET | BPF_K, SECCOMP_RET_ERRNO | (EPERM & SECCOMP_RET_DATA));
+  label(clone_check);  // threads (CLONE_THREAD) yes, processes no
+  stmt(BPF_LD | BPF_W | BPF_ABS, argument(0));
+  code.push_back(BPF_JUMP(BPF_JMP | BPF_JSET | BPF_K, CLONE_THREAD, 1, 0));
+  stmt(BPF_RET | BPF_K, SECCOMP_RET_ERRNO | (EPERM & SECCOMP_RET_DATA));
+  stmt(BPF_RET | BPF_K, SECCOMP_RET_ALLOW);
+  for (const auto& [at, to] : fixups) {  // forward jumps only (BPF has no others)
+    const std::size_t offset = labels.at(to) - at - 1;
+    if (labels.at(to) <= at || offset > 255) return false;
+    code[at].jt = static_cast<std::uint8_t>(offset);
+  }
+  sock_fprog program{};
+  program.len = static_cast<unsigned short>(code.size());
+  program.filter = code.data();
+  if (::prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0) != 0) return false;
+  return ::prctl(PR_SET_SECCOMP, SECCOMP_MODE_FILTER, &program) == 0;
+#else
+  return false;
+#endif
+}
+
+/// Limits and wording of one child run.
+struct ChildRun {
+  std::string path;         ///< the user's file, for messages
+  std::string doing;        ///< "meshing" or "reading"
+  double seconds = 0;       ///< wall-time limit, 0: none
+  double mib = 0;           ///< address-space limit, 0: none
+  bool sandbox = true;      ///< install the seccomp filter
+  std::string crash_hint;   ///< appended to a crash message
+};
+
+std::string limit_text(double value) {
+  std::ostringstream s;
+  s << value;
+  return s.str();
+}
+
+/// The child's answer when operator new fails: built before gmsh runs, written without
+/// allocating.
+const std::string* out_of_memory_message = nullptr;
+
+void out_of_memory() {
+  if (out_of_memory_message) write_all(3, *out_of_memory_message);
+  ::_exit(4);
+}
+
+[[noreturn]] void child_main(int out_fd, const ChildRun& run, const std::function<PolygonSoup()>& read) {
+  // Die with the parent (e.g. stagger interrupted), in a process group of our own so that
+  // the time limit also ends whatever the .geo started (allowed commands).
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  ::setpgid(0, 0);
+  const int null_fd = ::open("/dev/null", O_RDWR);
+  if (null_fd >= 0) {
+    ::dup2(null_fd, STDIN_FILENO);
+    // Quiet unless asked: also stderr, where glibc reports e.g. a double free in gmsh
+    // (the parent's error line says that gmsh crashed).
+    if (!env_flag("STAGGER_GMSH_VERBOSE")) {
+      ::dup2(null_fd, STDOUT_FILENO);
+      ::dup2(null_fd, STDERR_FILENO);
+    }
+  }
+  ::dup2(out_fd, 3);
+  ::fcntl(3, F_SETFD, FD_CLOEXEC);  // programs the .geo may start (allowed) do not hold the pipe
+  ::close_range(4, ~0U, 0);  // no inherited files (outputs, checkpoints) stay open
+  const rlimit no_core{0, 0};
+  ::setrlimit(RLIMIT_CORE, &no_core);
+  // AddressSanitizer reserves terabytes of address space for its shadow memory: an
+  // address-space limit would fail every allocation, so sanitizer builds go without it.
+#if !defined(__SANITIZE_ADDRESS__)
+  if (run.mib > 0) {
+    const auto bytes = static_cast<rlim_t>(std::min(run.mib * 1048576.0, 1e18));
+    const rlimit memory{bytes, bytes};
+    ::setrlimit(RLIMIT_AS, &memory);
+  }
+#endif
+  if (run.sandbox) {
+    const rlimit no_files{0, 0};  // writes to regular files fail (pipes are not files)
+    ::setrlimit(RLIMIT_FSIZE, &no_files);
+    ::signal(SIGXFSZ, SIG_IGN);
+    install_sandbox();
+  }
+  std::string message;
+  const auto failure = [](const std::string& text) {
+    Packer p;
+    p.value<std::uint8_t>(1);
+    p.string(text);
+    return p.bytes();
+  };
+  const std::string out_of_memory_text =
+      failure("gmsh ran out of memory " + run.doing + " " + run.path +
+              (run.mib > 0 ? " (memory limit " + limit_text(run.mib) +
+                                 " MiB: scene key mesh.gmsh_memory_limit, stagger mesh "
+                                 "--gmsh-memory-limit); coarsen the mesh or raise the limit"
+                           : std::string()));
+  out_of_memory_message = &out_of_memory_text;
+  std::set_new_handler(out_of_memory);
+  try {
+    message = pack(in_gmsh_session(run.path, read));
+  } catch (const Error& error) {
+    message = failure(error.what());
+  } catch (const std::bad_alloc&) {
+    message = out_of_memory_text;
+  } catch (...) {
+    message = failure("gmsh failed on " + run.path + ": unexpected exception");
+  }
+  ::_exit(write_all(3, message) ? 0 : 3);  // no atexit handlers, no stdio flush
+}
+
 /// Runs `read` (which returns a soup) in a gmsh session in a child process.
-template <class Read>
-PolygonSoup read_isolated(const std::string& path, Read read) {
-  const char* in_process = std::getenv("STAGGER_GMSH_IN_PROCESS");
-  if (in_process && *in_process && *in_process != '0') return with_gmsh(path, read);
+PolygonSoup read_isolated(const ChildRun& run, const std::function<PolygonSoup()>& read) {
+  if (env_flag("STAGGER_GMSH_IN_PROCESS")) return with_gmsh(run.path, read);
   // Hold the gmsh lock across the fork: no other thread is inside gmsh, and the child
   // (whose only thread is this one) must not lock it again.
   std::lock_guard lock(gmsh_mutex());
   int fds[2];
-  if (::pipe(fds) != 0) throw Error("cannot read " + path + ": pipe() failed");
+  if (::pipe2(fds, O_CLOEXEC) != 0) throw Error("cannot run gmsh on " + run.path + ": pipe() failed");
+  // The child starts with this address space and resident set (MiB): with its peak resident
+  // set they estimate its address space when it died (ru_maxrss), to tell a crash from
+  // running out of memory where gmsh does not check an allocation.
+  double start_vm_mib = 0, start_rss_mib = 0;
+  if (std::FILE* statm = std::fopen("/proc/self/statm", "r")) {
+    unsigned long pages = 0, resident = 0;
+    if (std::fscanf(statm, "%lu %lu", &pages, &resident) == 2) {
+      const double page_mib = static_cast<double>(::sysconf(_SC_PAGESIZE)) / 1048576.0;
+      start_vm_mib = static_cast<double>(pages) * page_mib;
+      start_rss_mib = static_cast<double>(resident) * page_mib;
+    }
+    std::fclose(statm);
+  }
   std::fflush(nullptr);  // nothing buffered is written twice
   const pid_t child = ::fork();
   if (child < 0) {
     ::close(fds[0]);
     ::close(fds[1]);
-    throw Error("cannot read " + path + ": fork() failed");
+    throw Error("cannot run gmsh on " + run.path + ": fork() failed");
   }
   if (child == 0) {
     ::close(fds[0]);
-    std::string message;
-    try {
-      message = pack(in_gmsh_session(path, read));
-    } catch (const Error& failure) {
-      Packer p;
-      p.value<std::uint8_t>(1);
-      p.string(failure.what());
-      message = p.bytes();
-    } catch (...) {
-      Packer p;
-      p.value<std::uint8_t>(1);
-      p.string("gmsh failed on " + path + ": unexpected exception");
-      message = p.bytes();
-    }
-    ::_exit(write_all(fds[1], message) ? 0 : 3);  // no atexit handlers, no stdio flush
+    child_main(fds[1], run, read);
   }
   ::close(fds[1]);
   std::string bytes;
   char buffer[65536];
+  using Clock = std::chrono::steady_clock;
+  const auto deadline = Clock::now() + std::chrono::duration<double>(run.seconds > 0 ? run.seconds : 0);
+  bool timed_out = false;
   for (;;) {
+    int wait_ms = -1;
+    if (run.seconds > 0) {
+      const double left = std::chrono::duration<double>(deadline - Clock::now()).count();
+      if (left <= 0) {
+        timed_out = true;
+        break;
+      }
+      wait_ms = static_cast<int>(std::min(std::ceil(left * 1000), 60000.0));
+    }
+    pollfd pfd{fds[0], POLLIN, 0};
+    const int ready = ::poll(&pfd, 1, wait_ms);
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready == 0) continue;  // re-check the deadline
     const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) break;
     bytes.append(buffer, static_cast<std::size_t>(n));
   }
   ::close(fds[0]);
-  int status = 0;
-  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  if (timed_out) {
+    ::kill(-child, SIGKILL);  // its process group
+    ::kill(child, SIGKILL);
   }
-  if (WIFSIGNALED(status))
-    throw Error("gmsh crashed (signal " + std::to_string(WTERMSIG(status)) + ", " + strsignal(WTERMSIG(status)) +
-                ") reading " + path +
-                ": the file is corrupt (e.g. an element refers to a node that $Nodes does not define); "
-                "check it with 'gmsh " + path + " -0' or re-export it");
+  int status = 0;
+  rusage usage{};
+  while (::wait4(child, &status, 0, &usage) < 0 && errno == EINTR) {
+  }
+  if (timed_out || (WIFSIGNALED(status) && WTERMSIG(status) == SIGXCPU))
+    throw Error("gmsh did not finish " + run.doing + " " + run.path + " within " + limit_text(run.seconds) +
+                " s (time limit: scene key mesh.gmsh_time_limit, stagger mesh --gmsh-time-limit); the file may "
+                "loop or sleep, or the mesh is very fine: raise the limit if it only needs longer");
+  if (WIFSIGNALED(status)) {
+    const int signal = WTERMSIG(status);
+    const double peak_rss_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB
+    const double used_mib = start_vm_mib + std::max(0.0, peak_rss_mib - start_rss_mib);
+    std::string why = run.crash_hint;
+    // A failed allocation can be as large as what is already used (a doubling array), so
+    // growing through a good part of the room left is enough to suspect memory.
+    const double room_mib = run.mib - start_vm_mib;
+    if (run.mib > 0 && (used_mib > 0.8 * run.mib || (room_mib > 0 && used_mib - start_vm_mib > 0.3 * room_mib)))
+      why = "it probably ran out of memory (about " + limit_text(std::round(used_mib)) + " MiB of its " +
+            limit_text(run.mib) + " MiB limit: scene key mesh.gmsh_memory_limit, stagger mesh --gmsh-memory-limit)";
+    throw Error("gmsh crashed (signal " + std::to_string(signal) + ", " + strsignal(signal) + ") " + run.doing +
+                " " + run.path + (why.empty() ? std::string() : ": " + why));
+  }
   try {
     return unpack(bytes);
   } catch (const Error&) {
     throw;
   } catch (const std::exception&) {
-    throw Error("gmsh failed reading " + path + ": the reader process ended early (exit status " +
-                std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")");
+    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    throw Error("gmsh ended before it finished " + run.doing + " " + run.path + " (exit status " +
+                std::to_string(code) + ", no mesh)" +
+                (run.doing == "meshing" ? "; does the .geo end gmsh (Exit)?" : std::string()));
   }
 }
 
@@ -390,6 +835,29 @@ PolygonSoup extract_soup(const std::string& path) {
       }
     }
   }
+  // 2D elements in surfaces outside every physical surface are left out: say so.
+  if (!groups.empty()) {
+    gmsh::vectorpair surfaces;
+    gmsh::model::getEntities(surfaces, 2);
+    std::int64_t left_out = 0, kept = static_cast<std::int64_t>(soup.polygon_region.size());
+    std::string which;
+    for (const auto& [dim, tag] : surfaces) {
+      if (entity_region.count(tag)) continue;
+      std::vector<int> types;
+      std::vector<std::vector<std::size_t>> element_tags, node_tags;
+      gmsh::model::mesh::getElements(types, element_tags, node_tags, 2, tag);
+      std::int64_t here = 0;
+      for (const auto& tags : element_tags) here += static_cast<std::int64_t>(tags.size());
+      if (here == 0) continue;
+      left_out += here;
+      if (which.size() < 60) which += (which.empty() ? "" : ", ") + std::to_string(tag);
+    }
+    soup.unassigned_elements = left_out;
+    if (left_out > 0)
+      soup.notes.push_back(std::to_string(left_out) + " of " + std::to_string(left_out + kept) +
+                           " 2D elements belong to no physical surface (surface(s) " + which +
+                           ") and were left out; add them to a Physical Surface to keep them");
+  }
   if (poly_nodes.empty())
     throw Error("empty mesh: " + path + " gave no 2D elements" +
                 (groups.empty() ? std::string(" (and it defines no physical surface)")
@@ -404,7 +872,21 @@ PolygonSoup extract_soup(const std::string& path) {
     soup.tag_names.push_back(physical_name(dim, tag));
     std::vector<int> entities;
     gmsh::model::getEntitiesForPhysicalGroup(dim, tag, entities);
+    std::size_t interfaces = 0, kept_entities = 0;
     for (int entity : entities) {
+      // A partitioned mesh has curves between partitions (their parent is a surface, not
+      // a model curve): they are no boundary, so they are no tag.
+      std::vector<int> partitions;
+      gmsh::model::getPartitions(1, entity, partitions);
+      if (!partitions.empty()) {
+        int parent_dim = -1, parent_tag = -1;
+        gmsh::model::getParent(1, entity, parent_dim, parent_tag);
+        if (parent_dim != 1) {
+          ++interfaces;
+          continue;
+        }
+      }
+      ++kept_entities;
       std::vector<int> types;
       std::vector<std::vector<std::size_t>> element_tags, node_tags;
       gmsh::model::mesh::getElements(types, element_tags, node_tags, 1, entity);
@@ -419,6 +901,12 @@ PolygonSoup extract_soup(const std::string& path) {
           edge_tag.push_back(t);
         }
       }
+    }
+    if (interfaces > 0) {
+      soup.notes.push_back("physical curve '" + soup.tag_names.back() + "': " + std::to_string(interfaces) +
+                           " partition interface curve(s) are not boundaries and were left out" +
+                           (kept_entities == 0 ? std::string(" (and so was the tag)") : std::string()));
+      if (kept_entities == 0) soup.tag_names.pop_back();
     }
   }
 
@@ -447,6 +935,41 @@ PolygonSoup extract_soup(const std::string& path) {
   for (std::size_t i = 0; i < used.size(); ++i)
     if (!found[i])
       throw Error(path + ": element node " + std::to_string(used[i]) + " has no coordinates");
+  // The mesh must lie in a plane z = const: x-y is dropped otherwise (and an x-z mesh would
+  // collapse into duplicate points).
+  {
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    std::size_t z_low = 0, z_high = 0;
+    for (std::size_t k = 0; k < node_tags.size(); ++k) {
+      if (!index.count(node_tags[k])) continue;
+      for (int d = 0; d < 3; ++d) {
+        const double v = coord[3 * k + static_cast<std::size_t>(d)];
+        if (v < lo[d]) {
+          lo[d] = v;
+          if (d == 2) z_low = node_tags[k];
+        }
+        if (v > hi[d]) {
+          hi[d] = v;
+          if (d == 2) z_high = node_tags[k];
+        }
+      }
+    }
+    const double span = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+    const double tol = 1e-10 * span;
+    if (hi[2] - lo[2] > tol) {
+      const auto range = [&](int d) { return number_text(lo[d]) + " to " + number_text(hi[d]); };
+      if (hi[1] - lo[1] <= tol || hi[0] - lo[0] <= tol) {
+        const bool xz = hi[1] - lo[1] <= tol;
+        throw Error(path + ": the mesh lies in the " + (xz ? "x-z" : "y-z") + " plane (" + (xz ? "y" : "x") + " = " +
+                    number_text(xz ? lo[1] : lo[0]) + " everywhere, z from " + range(2) +
+                    "); stagger meshes lie in the x-y plane: rotate the geometry (e.g. Rotate in the .geo) "
+                    "or re-export it");
+      }
+      throw Error(path + ": the mesh is not flat in the x-y plane: z varies from " + range(2) + " (nodes " +
+                  std::to_string(z_low) + " and " + std::to_string(z_high) +
+                  "); stagger meshes are 2D, with z constant");
+    }
+  }
   soup.polygon_points.reserve(poly_nodes.size());
   for (std::size_t node : poly_nodes) soup.polygon_points.push_back(index.at(node));
   for (std::size_t e = 0; e < edge_tag.size(); ++e) {
@@ -479,6 +1002,78 @@ std::size_t gmsh_triangles() {
   return n;
 }
 
+/// A 2D code needs a 2D model: volumes are refused up front (a 3D model's surfaces would
+/// otherwise be projected onto z = 0 and collapse into "duplicate points"). A .msh may list
+/// the volume entities of the model it came from: there only volume elements count.
+void require_planar_model(const std::string& path, bool volume_entities_count) {
+  gmsh::vectorpair volumes;
+  gmsh::model::getEntities(volumes, 3);
+  if (volumes.empty()) return;
+  std::vector<int> types;
+  std::vector<std::vector<std::size_t>> element_tags, node_tags;
+  gmsh::model::mesh::getElements(types, element_tags, node_tags, 3, -1);
+  std::size_t elements = 0;
+  for (const auto& tags : element_tags) elements += tags.size();
+  if (elements == 0 && !volume_entities_count) return;
+  throw Error(path + ": a 3D model (" + std::to_string(volumes.size()) + " volume(s)" +
+              (elements > 0 ? ", " + std::to_string(elements) + " volume elements" : std::string()) +
+              "); stagger is 2D: give it surfaces in the x-y plane (z = 0) only");
+}
+
+/// All-quad subdivision of a soup, the same as gmsh's (Mesh.SubdivisionAlgorithm = 1): an
+/// n-gon becomes n quads around its centroid through its edge midpoints (a triangle 3, a
+/// quad 4). Only if there are triangles. A tagged edge is split at its midpoint.
+void subdivide_soup(PolygonSoup& soup) {
+  if (count_triangles(soup) == 0) return;
+  if (soup.x.size() >= (std::size_t{1} << 31))
+    throw Error(soup.source + ": too many points to subdivide");
+  std::unordered_map<std::uint64_t, std::int64_t> midpoint;
+  const auto key = [](std::int64_t a, std::int64_t b) {
+    return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint64_t>(std::max(a, b));
+  };
+  const auto add_point = [&](double x, double y) {
+    soup.x.push_back(x);
+    soup.y.push_back(y);
+    return static_cast<std::int64_t>(soup.x.size() - 1);
+  };
+  const auto mid = [&](std::int64_t a, std::int64_t b) {
+    const auto [it, fresh] = midpoint.emplace(key(a, b), 0);
+    if (fresh) {
+      const auto A = static_cast<std::size_t>(a), B = static_cast<std::size_t>(b);
+      it->second = add_point(0.5 * (soup.x[A] + soup.x[B]), 0.5 * (soup.y[A] + soup.y[B]));
+    }
+    return it->second;
+  };
+  const std::vector<std::int64_t> begin = soup.polygon_begin, points = soup.polygon_points;
+  const std::vector<int> region = soup.polygon_region;
+  soup.polygon_begin = {0};
+  soup.polygon_points.clear();
+  soup.polygon_region.clear();
+  for (std::size_t f = 0; f + 1 < begin.size(); ++f) {
+    const auto b = begin[f], n = begin[f + 1] - begin[f];
+    double cx = 0, cy = 0;
+    for (auto k = b; k < b + n; ++k) {
+      cx += soup.x[static_cast<std::size_t>(points[static_cast<std::size_t>(k)])];
+      cy += soup.y[static_cast<std::size_t>(points[static_cast<std::size_t>(k)])];
+    }
+    const std::int64_t centre = add_point(cx / static_cast<double>(n), cy / static_cast<double>(n));
+    const auto p = [&](std::int64_t k) { return points[static_cast<std::size_t>(b + (k + n) % n)]; };
+    for (std::int64_t k = 0; k < n; ++k)
+      soup.add_polygon({p(k), mid(p(k), p(k + 1)), centre, mid(p(k - 1), p(k))}, region.empty() ? 0 : region[f]);
+  }
+  std::vector<TaggedEdge> edges;
+  for (const TaggedEdge& e : soup.tagged_edges) {
+    const auto it = midpoint.find(key(e.a, e.b));
+    if (it == midpoint.end()) {
+      edges.push_back(e);
+      continue;
+    }
+    edges.push_back({e.a, it->second, e.tag});
+    edges.push_back({it->second, e.b, e.tag});
+  }
+  soup.tagged_edges = std::move(edges);
+}
+
 /// Subdivide policy after meshing: if triangles are left, split every element into quads
 /// (gmsh's all-quad subdivision: each quad into 4, each triangle into 3, so the element
 /// size halves).
@@ -503,6 +1098,9 @@ void apply_policy(const PolygonSoup& soup, TrianglePolicy policy) {
 /// would leak into every later file of the process. Instead, a small wrapper file defines
 /// the parameters and includes the .geo: DefineConstant keeps a value that is already
 /// defined, exactly as with -setnumber, and open() clears the parser variables each time.
+/// The wrapper lives in a private directory (mkdtemp, mode 0700), so no other user can plant
+/// or read it, and the .geo's path is quoted with a delimiter it does not contain (gmsh
+/// strings have no escapes).
 class ParameterWrapper {
 public:
   ParameterWrapper(const std::string& path,
@@ -527,16 +1125,32 @@ public:
                     "' (the file never mentions it; check the spelling)");
       wrapper << name << " = " << number_text(value) << ";\n";
     }
-    wrapper << "Include \"" << std::filesystem::absolute(path).string() << "\";\n";
-    static unsigned counter = 0;  // under gmsh_mutex()
-    temp_ = std::filesystem::temp_directory_path() /
-            ("stagger_" + std::to_string(::getpid()) + "_" + std::to_string(counter++) + ".geo");
-    std::ofstream(temp_) << wrapper.str();
-    file_ = temp_.string();
+    const std::string absolute = std::filesystem::absolute(path).lexically_normal().string();
+    const bool control = std::any_of(absolute.begin(), absolute.end(),
+                                     [](unsigned char ch) { return ch < 0x20 || ch == 0x7f; });
+    const char quote = absolute.find('"') == std::string::npos ? '"' : '\'';
+    if (control || absolute.find(quote) != std::string::npos || absolute.size() > 1000)
+      throw Error(path + ": gmsh cannot include this path with parameters (it " +
+                  (control ? std::string("contains a control character such as a newline")
+                   : absolute.size() > 1000 ? std::string("is longer than 1000 characters")
+                                            : std::string("contains both \" and ' quotes")) +
+                  "); rename the file or its directories");
+    wrapper << "Include " << quote << absolute << quote << ";\n";
+    std::string directory = (std::filesystem::temp_directory_path() / "stagger-geo-XXXXXX").string();
+    if (!::mkdtemp(directory.data()))
+      throw Error(path + ": cannot create a private temporary directory for the parameter wrapper: " +
+                  std::strerror(errno));
+    directory_ = directory;
+    file_ = (directory_ / "parameters.geo").string();
+    const int fd = ::open(file_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+    const std::string bytes = wrapper.str();
+    const bool written = fd >= 0 && write_all(fd, bytes);
+    if (fd >= 0) ::close(fd);
+    if (!written) throw Error(path + ": cannot write the parameter wrapper in " + directory_.string());
   }
   ~ParameterWrapper() {
     std::error_code ec;
-    if (!temp_.empty()) std::filesystem::remove(temp_, ec);
+    if (!directory_.empty()) std::filesystem::remove_all(directory_, ec);
   }
   ParameterWrapper(const ParameterWrapper&) = delete;
   ParameterWrapper& operator=(const ParameterWrapper&) = delete;
@@ -555,7 +1169,7 @@ private:
     return false;
   }
   std::string file_;
-  std::filesystem::path temp_;
+  std::filesystem::path directory_;
 };
 
 std::string lower_extension(const std::string& path) {
@@ -567,10 +1181,35 @@ std::string lower_extension(const std::string& path) {
 
 }  // namespace
 
+std::string find_outside_command(const std::string& path) {
+  std::set<std::filesystem::path> seen;
+  std::string found;
+  scan_geo_file(path, seen, 0, found);
+  return found;
+}
+
 PolygonSoup read_geo(const std::string& path, const GeoOptions& options) {
   require_file(path, "geometry file");
-  PolygonSoup soup = with_gmsh(path, [&] {
-    const ParameterWrapper wrapper(path, options.parameters);
+  // STAGGER_GEO_SCAN=0 skips the scan but keeps the sandbox (tests of the sandbox).
+  const char* scan = std::getenv("STAGGER_GEO_SCAN");
+  if (!options.allow_commands && !(scan && std::string(scan) == "0")) {
+    const std::string found = find_outside_command(path);
+    if (!found.empty())
+      throw Error(found + "; stagger refuses .geo commands that reach outside the mesh (set "
+                  "mesh.allow_geo_commands = true, or stagger mesh --allow-geo-commands, to allow them: "
+                  "that runs arbitrary code)");
+  }
+  const ParameterWrapper wrapper(path, options.parameters);
+  ChildRun run;
+  run.path = path;
+  run.doing = "meshing";
+  run.seconds = options.time_limit_seconds;
+  run.mib = options.memory_limit_mib;
+  run.sandbox = !options.allow_commands;
+  run.crash_hint =
+      "gmsh 4.8 crashes on some inputs, e.g. MeshAlgorithm Surface{...} = 8 (use 6 there) or a command "
+      "after which it does not recover from an error; run 'gmsh -2 " + path + "' to see where it fails";
+  PolygonSoup soup = read_isolated(run, [&] {
     gmsh::open(wrapper.file());
     throw_if_gmsh_error(path, "reading");
     // Options after open(): the file may set its own. Algorithm 8 segfaults in Debian's
@@ -585,6 +1224,7 @@ PolygonSoup read_geo(const std::string& path, const GeoOptions& options) {
       // recombines with blossom too and then subdivides if triangles are left.
       gmsh::option::setNumber("Mesh.RecombinationAlgorithm", 1);
     }
+    require_planar_model(path, true);
     gmsh::model::mesh::generate(2);
     throw_if_gmsh_error(path, "meshing");
     if (options.triangles == TrianglePolicy::subdivide) {
@@ -598,17 +1238,31 @@ PolygonSoup read_geo(const std::string& path, const GeoOptions& options) {
 }
 
 PolygonSoup read_msh(const std::string& path, TrianglePolicy triangles) {
+  GeoOptions options;
+  options.triangles = triangles;
+  return read_msh(path, options);
+}
+
+PolygonSoup read_msh(const std::string& path, const GeoOptions& options) {
   require_file(path, "mesh file");
-  PolygonSoup soup = read_isolated(path, [&] {
+  ChildRun run;
+  run.path = path;
+  run.doing = "reading";
+  run.seconds = options.time_limit_seconds;
+  run.mib = options.memory_limit_mib;
+  run.sandbox = true;  // a .msh holds no commands
+  run.crash_hint = "the file is corrupt (e.g. an element refers to a node that $Nodes does not define); "
+                   "check it with 'gmsh " + path + " -0' or re-export it";
+  PolygonSoup soup = read_isolated(run, [&] {
     gmsh::open(path);
     throw_if_gmsh_error(path, "reading");
-    if (triangles == TrianglePolicy::subdivide) {
-      subdivide_if_triangles();
-      throw_if_gmsh_error(path, "subdividing");
-    }
+    require_planar_model(path, false);
     return extract_soup(path);
   });
-  apply_policy(soup, triangles);
+  // gmsh's subdivision of a discrete (file) mesh duplicates nodes where entities meet, so a
+  // .msh is subdivided here, on the soup.
+  if (options.triangles == TrianglePolicy::subdivide) subdivide_soup(soup);
+  apply_policy(soup, options.triangles);
   return soup;
 }
 
@@ -619,7 +1273,7 @@ PolygonSoup read_mesh_file(const std::string& path, const GeoOptions& options) {
     if (!options.parameters.empty())
       throw Error(path + ": parameters (" + options.parameters.front().first +
                   " ...) only apply to .geo files, not to a .msh mesh");
-    return read_msh(path, options.triangles);
+    return read_msh(path, options);
   }
   throw Error("'" + path + "': unknown mesh file extension '" + ext + "'; use .geo or .msh");
 }

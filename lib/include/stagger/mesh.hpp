@@ -29,6 +29,10 @@ struct PolygonSoup {
   std::vector<TaggedEdge> tagged_edges;       ///< boundary segments with tag indices
   std::vector<std::string> tag_names;         ///< tag index -> name
   std::string source = "<memory>";            ///< file name (or description) for messages
+  /// 2D elements of the file that belong to no physical surface (left out of the soup);
+  /// build_mesh notes them, and rejects them under quads_only.
+  std::int64_t unassigned_elements = 0;
+  std::vector<std::string> notes;  ///< what the importer left out or changed, for the user
 
   /// Appends a polygon; returns its index.
   std::size_t add_polygon(const std::vector<std::int64_t>& points, int region);

@@ -275,7 +275,10 @@ public:
     const auto loop_start = Clock::now();
     const double loop_seconds_before = state_.loop_seconds;
     auto last_checkpoint = loop_start;
-    auto last_progress = loop_start - std::chrono::seconds(1);
+    // On a terminal the progress line is redrawn in place; in a log, one line every 10 s.
+    const bool terminal = ::isatty(::fileno(stderr)) != 0;
+    const double progress_every = terminal ? 0.2 : 10.0;
+    auto last_progress = terminal ? loop_start - std::chrono::seconds(1) : loop_start;
     std::string failure;
 
     while (!simulation_.finished()) {
@@ -302,14 +305,14 @@ public:
           last_checkpoint = Clock::now();
         }
       }
-      if (control_.progress && seconds_since(last_progress) >= 0.2) {
-        print_progress(loop_start, loop_start_time, t_end);
+      if (control_.progress && seconds_since(last_progress) >= progress_every) {
+        print_progress(loop_start, loop_start_time, t_end, terminal);
         last_progress = Clock::now();
       }
     }
     state_.loop_seconds = loop_seconds_before + seconds_since(loop_start);
-    if (control_.progress) {
-      print_progress(loop_start, loop_start_time, t_end);
+    if (control_.progress && terminal) {
+      print_progress(loop_start, loop_start_time, t_end, terminal);
       std::fputc('\n', stderr);
     }
 
@@ -419,7 +422,7 @@ private:
     write_file_atomically((directory_ / (control_.name + ".checkpoint")).string(), out.data());
   }
 
-  void print_progress(Clock::time_point loop_start, double loop_start_time, double t_end) const {
+  void print_progress(Clock::time_point loop_start, double loop_start_time, double t_end, bool terminal) const {
     const double t = simulation_.time();
     const double elapsed = seconds_since(loop_start);
     char eta[32] = "?";
@@ -427,8 +430,8 @@ private:
       const double remaining = elapsed * (t_end - t) / (t - loop_start_time);
       std::snprintf(eta, sizeof eta, "%.0f s", remaining);
     }
-    std::fprintf(stderr, "\rcycle %ld  t = %.6e  dt = %.3e  ETA %s      ", simulation_.cycle(), t, simulation_.dt(),
-                 eta);
+    std::fprintf(stderr, terminal ? "\rcycle %ld  t = %.6e  dt = %.3e  ETA %s      " : "cycle %ld  t = %.6e  dt = %.3e  ETA %s\n",
+                 simulation_.cycle(), t, simulation_.dt(), eta);
     std::fflush(stderr);
   }
 

@@ -211,6 +211,175 @@ void check_zone_geometry(const PolygonSoup& soup) {
   }
 }
 
+/// Zones that overlap: no two edges may cross or touch except at a shared corner, and no
+/// point may lie inside a zone it is not a corner of. A uniform grid of about one cell per
+/// edge keeps this O(n) for meshes of even size (each edge and zone is tested against those
+/// in the cells its bounding box covers). CGAL's orientation check finds folds inside one
+/// connected piece; this also finds separate pieces on top of each other, and meshes that
+/// wind round more than once.
+void check_overlaps(const Mesh& mesh, const std::vector<std::size_t>& polygon_of_zone,
+                    const std::vector<std::int64_t>& soup_point) {
+  const Index nzones = mesh.num_zones();
+  const auto next_corner = [&](Index k) {
+    const Index z = mesh.corner_zone[k];
+    return k + 1 == mesh.zone_corner_begin[z + 1] ? mesh.zone_corner_begin[z] : k + 1;
+  };
+  // Each edge once: an interior edge is kept from the corner whose side runs from the lower
+  // to the higher point id.
+  std::vector<Index> side;  // corner whose side is the edge
+  for (Index k = 0; k < mesh.num_corners(); ++k) {
+    const Index a = mesh.corner_point[k], b = mesh.corner_point[next_corner(k)];
+    if (a < b) {
+      side.push_back(k);
+      continue;
+    }
+    bool twin = false;
+    for (Index j = mesh.point_corner_begin[b]; j < mesh.point_corner_begin[b + 1] && !twin; ++j)
+      twin = mesh.corner_point[next_corner(mesh.point_corners[j])] == a;
+    if (!twin) side.push_back(k);
+  }
+  double xmin = HUGE_VAL, xmax = -HUGE_VAL, ymin = HUGE_VAL, ymax = -HUGE_VAL;
+  for (Index p = 0; p < mesh.num_points(); ++p) {
+    xmin = std::min(xmin, mesh.x[p]);
+    xmax = std::max(xmax, mesh.x[p]);
+    ymin = std::min(ymin, mesh.y[p]);
+    ymax = std::max(ymax, mesh.y[p]);
+  }
+  const double width = std::max(xmax - xmin, 1e-300), height = std::max(ymax - ymin, 1e-300);
+  const double cells_wanted = std::max(1.0, static_cast<double>(side.size()));
+  const double h = std::sqrt(width * height / cells_wanted);
+  // Extents that overflow (points near +-1e308 in different zones) get one cell.
+  const bool gridded = std::isfinite(width) && std::isfinite(height) && std::isfinite(h) && h > 0;
+  const auto cells = [&](double extent) {
+    return gridded ? static_cast<std::int64_t>(std::clamp(std::ceil(extent / h), 1.0, 65536.0)) : std::int64_t{1};
+  };
+  const std::int64_t nx = cells(width), ny = cells(height);
+  const auto cell_of = [](double t, std::int64_t n) {  // t in [0, 1] -> 0..n-1 (NaN -> 0)
+    const double c = std::floor(t * static_cast<double>(n));
+    return c >= 0 ? static_cast<std::int64_t>(std::min(c, static_cast<double>(n - 1))) : std::int64_t{0};
+  };
+  const auto cell_x = [&](double x) { return cell_of((x - xmin) / width, nx); };
+  const auto cell_y = [&](double y) { return cell_of((y - ymin) / height, ny); };
+  // Buckets (CSR) of items by the cells their bounding boxes cover.
+  struct Box {
+    std::int64_t i0, i1, j0, j1;
+  };
+  const auto buckets = [&](std::size_t count, auto box_of, std::vector<std::int64_t>& begin,
+                           std::vector<Index>& items) {
+    begin.assign(static_cast<std::size_t>(nx * ny) + 1, 0);
+    for (int pass = 0; pass < 2; ++pass) {
+      std::vector<std::int64_t> fill;
+      if (pass == 1) {
+        for (std::size_t c = 1; c < begin.size(); ++c) begin[c] += begin[c - 1];
+        items.resize(static_cast<std::size_t>(begin.back()));
+        fill.assign(begin.begin(), begin.end() - 1);
+      }
+      for (std::size_t item = 0; item < count; ++item) {
+        const Box b = box_of(item);
+        for (std::int64_t j = b.j0; j <= b.j1; ++j)
+          for (std::int64_t i = b.i0; i <= b.i1; ++i) {
+            const auto cell = static_cast<std::size_t>(j * nx + i);
+            if (pass == 0) ++begin[cell + 1];
+            else items[static_cast<std::size_t>(fill[cell]++)] = static_cast<Index>(item);
+          }
+      }
+    }
+  };
+  const auto point_text = [&](Index p) {
+    std::ostringstream t;
+    t.precision(12);
+    t << "point " << soup_point[static_cast<std::size_t>(p)] << " (" << mesh.x[p] << ", " << mesh.y[p] << ")";
+    return t.str();
+  };
+  const auto zone_text = [&](Index z) { return "zone " + std::to_string(polygon_of_zone[static_cast<std::size_t>(z)]); };
+  const auto edge_text = [&](Index k) {
+    return "edge " + std::to_string(soup_point[static_cast<std::size_t>(mesh.corner_point[k])]) + "-" +
+           std::to_string(soup_point[static_cast<std::size_t>(mesh.corner_point[next_corner(k)])]) + " of " +
+           zone_text(mesh.corner_zone[k]);
+  };
+  const auto orient = [&](Index a, Index b, Index c) {
+    return (mesh.x[b] - mesh.x[a]) * (mesh.y[c] - mesh.y[a]) - (mesh.y[b] - mesh.y[a]) * (mesh.x[c] - mesh.x[a]);
+  };
+  const auto on_segment = [&](Index a, Index b, Index p) {  // p collinear with a-b: within it?
+    return std::min(mesh.x[a], mesh.x[b]) <= mesh.x[p] && mesh.x[p] <= std::max(mesh.x[a], mesh.x[b]) &&
+           std::min(mesh.y[a], mesh.y[b]) <= mesh.y[p] && mesh.y[p] <= std::max(mesh.y[a], mesh.y[b]);
+  };
+  const std::string fix = "; zones must not overlap: check the mesh (or the mesh transform)";
+
+  std::vector<std::int64_t> begin;
+  std::vector<Index> items;
+  buckets(side.size(), [&](std::size_t s) {
+    const Index a = mesh.corner_point[side[s]], b = mesh.corner_point[next_corner(side[s])];
+    return Box{cell_x(std::min(mesh.x[a], mesh.x[b])), cell_x(std::max(mesh.x[a], mesh.x[b])),
+               cell_y(std::min(mesh.y[a], mesh.y[b])), cell_y(std::max(mesh.y[a], mesh.y[b]))};
+  }, begin, items);
+  for (std::size_t cell = 0; cell + 1 < begin.size(); ++cell)
+    for (auto u = begin[cell]; u < begin[cell + 1]; ++u)
+      for (auto v = u + 1; v < begin[cell + 1]; ++v) {
+        const Index k1 = side[static_cast<std::size_t>(items[static_cast<std::size_t>(u)])];
+        const Index k2 = side[static_cast<std::size_t>(items[static_cast<std::size_t>(v)])];
+        const Index a = mesh.corner_point[k1], b = mesh.corner_point[next_corner(k1)];
+        const Index c = mesh.corner_point[k2], d = mesh.corner_point[next_corner(k2)];
+        const int shared = (a == c) + (a == d) + (b == c) + (b == d);
+        if (shared == 2) continue;
+        const double o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a), o4 = orient(c, d, b);
+        if (shared == 0 && ((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0)))
+          throw Error("zones overlap in " + mesh.source + ": " + edge_text(k1) + " crosses " + edge_text(k2) +
+                      " (" + point_text(a) + " to " + point_text(b) + ")" + fix);
+        // An end point on the other edge (not a shared corner): a hanging node or a fold.
+        const auto touches = [&](Index p, double o, Index e0, Index e1) {
+          return p != e0 && p != e1 && o == 0 && on_segment(e0, e1, p);
+        };
+        Index p = -1, k = -1;
+        if (touches(c, o1, a, b)) p = c, k = k1;
+        else if (touches(d, o2, a, b)) p = d, k = k1;
+        else if (touches(a, o3, c, d)) p = a, k = k2;
+        else if (touches(b, o4, c, d)) p = b, k = k2;
+        if (p >= 0)
+          throw Error("zones overlap or do not connect in " + mesh.source + ": " + point_text(p) + " lies on " +
+                      edge_text(k) + " but is not a corner of that zone" + fix);
+      }
+  // Containment: a point strictly inside a zone it is not a corner of.
+  buckets(static_cast<std::size_t>(nzones), [&](std::size_t z) {
+    double x0 = HUGE_VAL, x1 = -HUGE_VAL, y0 = HUGE_VAL, y1 = -HUGE_VAL;
+    for (Index k = mesh.zone_corner_begin[z]; k < mesh.zone_corner_begin[z + 1]; ++k) {
+      const Index p = mesh.corner_point[k];
+      x0 = std::min(x0, mesh.x[p]);
+      x1 = std::max(x1, mesh.x[p]);
+      y0 = std::min(y0, mesh.y[p]);
+      y1 = std::max(y1, mesh.y[p]);
+    }
+    return Box{cell_x(x0), cell_x(x1), cell_y(y0), cell_y(y1)};
+  }, begin, items);
+  for (Index p = 0; p < mesh.num_points(); ++p) {
+    const auto cell = static_cast<std::size_t>(cell_y(mesh.y[p]) * nx + cell_x(mesh.x[p]));
+    for (auto u = begin[cell]; u < begin[cell + 1]; ++u) {
+      const Index z = items[static_cast<std::size_t>(u)];
+      bool corner = false, inside = true;
+      for (Index k = mesh.zone_corner_begin[z]; k < mesh.zone_corner_begin[z + 1]; ++k) {
+        const Index a = mesh.corner_point[k], b = mesh.corner_point[next_corner(k)];
+        if (a == p) corner = true;
+        if (!(orient(a, b, p) > 0)) inside = false;  // convex test first: cheap and exact enough
+      }
+      if (corner) continue;
+      if (!inside) {
+        // Non-convex zones: crossing number.
+        bool odd = false;
+        for (Index k = mesh.zone_corner_begin[z]; k < mesh.zone_corner_begin[z + 1]; ++k) {
+          const Index a = mesh.corner_point[k], b = mesh.corner_point[next_corner(k)];
+          if ((mesh.y[a] > mesh.y[p]) != (mesh.y[b] > mesh.y[p]) &&
+              mesh.x[p] < mesh.x[a] + (mesh.x[b] - mesh.x[a]) * (mesh.y[p] - mesh.y[a]) / (mesh.y[b] - mesh.y[a]))
+            odd = !odd;
+        }
+        inside = odd;
+      }
+      if (inside)
+        throw Error("zones overlap in " + mesh.source + ": " + point_text(p) + " lies inside " + zone_text(z) +
+                    ", which it is not a corner of" + fix);
+    }
+  }
+}
+
 }  // namespace
 
 Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options,
@@ -224,6 +393,10 @@ Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options,
     return soup.polygon_region.empty() ? 0 : soup.polygon_region[f];
   };
 
+  for (const auto& note : soup.notes) rep.notes.push_back(note);
+  if (options.quads_only && soup.unassigned_elements > 0)
+    throw Error("quads only: " + std::to_string(soup.unassigned_elements) + " 2D elements of " + soup.source +
+                " belong to no physical surface; add them to a Physical Surface (or remove them)");
   if (options.quads_only) {
     std::size_t non_quads = 0, first = npoly;
     for (std::size_t f = 0; f < npoly; ++f)
@@ -281,6 +454,14 @@ Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options,
       const double twice = polygon_twice_area(static_cast<int>(soup.polygon_begin[f + 1] - begin),
                                               [&](int k) { return cx[point(k)]; }, [&](int k) { return cy[point(k)]; });
       topo.reversed[f] = twice < 0 ? 1 : 0;
+    }
+    // All clockwise is a mirror image; some clockwise is a fold, not something to repair.
+    const auto clockwise = static_cast<std::size_t>(std::count(topo.reversed.begin(), topo.reversed.end(), 1));
+    if (clockwise > 0 && clockwise < npoly) {
+      const auto f = static_cast<std::size_t>(
+          std::find(topo.reversed.begin(), topo.reversed.end(), clockwise * 2 < npoly ? 1 : 0) - topo.reversed.begin());
+      throw Error("zone " + std::to_string(f) + " of " + soup.source + " is inverted relative to the other " +
+                  "zones (the mesh folds over there): " + zone_points_text(soup, f));
     }
   }
   polygon_ids = {};
@@ -395,6 +576,8 @@ Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options,
     std::sort(tag.points.begin(), tag.points.end());
     tag.points.erase(std::unique(tag.points.begin(), tag.points.end()), tag.points.end());
   }
+
+  check_overlaps(mesh, polygon_of_zone, used);
 
   // Boundary loops from CGAL: count them and the boundary edges no tag covers.
   std::size_t untagged = 0, boundary_edges = 0;

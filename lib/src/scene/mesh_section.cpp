@@ -176,6 +176,14 @@ Mesh read_mesh_section(Section& section, const std::string& scene_file, std::vec
     options.triangles = triangles == "accept"      ? meshgen::TrianglePolicy::accept
                         : triangles == "subdivide" ? meshgen::TrianglePolicy::subdivide
                                                    : meshgen::TrianglePolicy::reject;
+    // gmsh runs in a child process with these limits (docs/mesh.md, "gmsh in a child process").
+    options.time_limit_seconds = section.number("gmsh_time_limit", options.time_limit_seconds);
+    if (!(options.time_limit_seconds >= 0 && std::isfinite(options.time_limit_seconds)))
+      section.fail("gmsh_time_limit", "must be >= 0 seconds (0: no limit), got " + show(options.time_limit_seconds));
+    options.memory_limit_mib = section.number("gmsh_memory_limit", options.memory_limit_mib);
+    if (!(options.memory_limit_mib >= 0 && std::isfinite(options.memory_limit_mib)))
+      section.fail("gmsh_memory_limit", "must be >= 0 MiB (0: no limit), got " + show(options.memory_limit_mib));
+    options.allow_commands = section.boolean("allow_geo_commands", false);
     std::vector<std::string> parameter_names;
     if (auto parameters = section.subtable("parameters")) {
       for (const auto& [key, node] : parameters->table()) {
@@ -201,7 +209,9 @@ Mesh read_mesh_section(Section& section, const std::string& scene_file, std::vec
   }
 
   // Coordinate transform of the generated points (e.g. the Saltzman mesh).
+  bool transformed = false;
   if (auto transform = section.subtable("transform")) {
+    transformed = true;
     std::optional<Expression> fx, fy;
     if (transform->has("x")) fx = transform->value_or_expression("x", {"x", "y"}).expression;
     if (transform->has("y")) fy = transform->value_or_expression("y", {"x", "y"}).expression;
@@ -225,14 +235,18 @@ Mesh read_mesh_section(Section& section, const std::string& scene_file, std::vec
 
   MeshBuildOptions build_options;
   build_options.quads_only = quads_only;
-  // Generators are valid by construction: skip CGAL's halfedge build (time and peak memory).
-  build_options.check_topology = has_file;
+  // Untransformed generators are valid by construction: skip CGAL's halfedge build (time and
+  // peak memory); a transform may fold the mesh, so it gets the full check (the overlap test
+  // runs for every mesh).
+  build_options.check_topology = has_file || transformed;
   MeshBuildReport report;
   Mesh mesh;
   try {
     mesh = build_mesh(soup, build_options, &report);
   } catch (const Error& failure) {
-    section.fail(has_file ? "file" : "generator", failure.what());
+    if (has_file) section.fail("file", failure.what());
+    if (transformed) section.fail("transform", std::string("the transformed mesh is invalid: ") + failure.what());
+    section.fail("generator", failure.what());
   }
   // The report's notes already count reoriented zones and dropped points.
   for (const auto& note : report.notes) notes.push_back("mesh " + mesh_label + ": " + note);

@@ -19,17 +19,31 @@ enum class TrianglePolicy {
   reject,     ///< stagger::Error naming the file and the number of triangles
 };
 
-/// How read_geo meshes a .geo file.
+/// How read_geo meshes a .geo file (and read_msh reads a .msh). gmsh runs in a child process
+/// (docs/mesh.md, "gmsh in a child process"): the limits below bound it, and a crash, a
+/// timeout or running out of memory becomes a stagger::Error naming the file.
 struct GeoOptions {
   std::vector<std::pair<std::string, double>> parameters;  ///< like gmsh -setnumber
   bool recombine = true;                              ///< recombine triangles into quads
   TrianglePolicy triangles = TrianglePolicy::accept;  ///< what to do with leftover triangles
+  double time_limit_seconds = 600;  ///< wall-time limit of the gmsh child; 0: none
+  double memory_limit_mib = 8192;   ///< address-space limit of the gmsh child (MiB); 0: none
+  /// Allow .geo commands that reach outside the mesh (SystemCall, Printf > file, Exit, Sleep,
+  /// Save, Merge of a script, ...). They run arbitrary code; by default they are refused
+  /// before gmsh runs.
+  bool allow_commands = false;
 };
+
+/// The first .geo command of `path` (or of a file it includes) that reaches outside the
+/// mesh, as "FILE:LINE: what", or "" if there is none (docs/mesh.md lists the commands).
+std::string find_outside_command(const std::string& path);
 
 /// Meshes a .geo file with gmsh; physical surfaces become regions, physical curves tags.
 PolygonSoup read_geo(const std::string& path, const GeoOptions& options = {});
 /// Reads a .msh file (MSH 2.2 or 4.1) through gmsh.
 PolygonSoup read_msh(const std::string& path, TrianglePolicy triangles = TrianglePolicy::accept);
+/// Reads a .msh file with the triangle policy and child-process limits of `options`.
+PolygonSoup read_msh(const std::string& path, const GeoOptions& options);
 /// Dispatches on the extension (.geo or .msh).
 PolygonSoup read_mesh_file(const std::string& path, const GeoOptions& options = {});
 /// Writes a mesh as MSH 4.1 (regions as physical surfaces, tags as physical curves).

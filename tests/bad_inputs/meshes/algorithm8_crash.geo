@@ -1,0 +1,7 @@
+// Frontal-Delaunay for quads (8) set on one surface crashes gmsh 4.8 (segfault).
+// A unit square: region "domain", tag "wall".
+Point(1) = {0, 0, 0, 0.25}; Point(2) = {1, 0, 0, 0.25}; Point(3) = {1, 1, 0, 0.25}; Point(4) = {0, 1, 0, 0.25};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+Physical Surface("domain") = {1}; Physical Curve("wall") = {1, 2, 3, 4};
+MeshAlgorithm Surface{1} = 8;

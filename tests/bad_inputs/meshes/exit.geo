@@ -1,0 +1,3 @@
+// A .geo that ends the process.
+Include "unit_square.geo";
+Exit;

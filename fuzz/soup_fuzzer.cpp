@@ -76,7 +76,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     case 2:
       if (!soup.polygon_region.empty()) soup.polygon_region.pop_back();
       break;
-    default: break;
+    default:
+      break;
   }
   stagger::MeshBuildOptions options;
   options.quads_only = in.ConsumeBool();

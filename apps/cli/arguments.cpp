@@ -32,8 +32,7 @@ Arguments::Arguments(const std::string& command, const std::vector<std::string>&
       inline_value = args[++i];
     }
     auto& slot = values_[spec->name];
-    if (!slot.empty() && !spec->repeatable)
-      throw UsageError("option '" + name + "' of '" + command + "' given twice");
+    if (!slot.empty() && !spec->repeatable) throw UsageError("option '" + name + "' of '" + command + "' given twice");
     slot.push_back(inline_value);
   }
 }

@@ -13,14 +13,14 @@ struct UsageError : std::runtime_error {
 };
 
 struct OptionSpec {
-  std::string name;      ///< "--out" (or "-o")
-  std::string alias;     ///< "" or "-o"
+  std::string name;   ///< "--out" (or "-o")
+  std::string alias;  ///< "" or "-o"
   bool takes_value = false;
   bool repeatable = false;
 };
 
 class Arguments {
-public:
+ public:
   /// Parses args (after the subcommand) for `command` ("stagger run").
   Arguments(const std::string& command, const std::vector<std::string>& args, const std::vector<OptionSpec>& specs);
   bool flag(const std::string& name) const { return values_.count(name) != 0; }
@@ -29,7 +29,7 @@ public:
   std::vector<std::string> values(const std::string& name) const;
   const std::vector<std::string>& positional() const { return positional_; }
 
-private:
+ private:
   std::map<std::string, std::vector<std::string>> values_;
   std::vector<std::string> positional_;
 };

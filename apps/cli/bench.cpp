@@ -176,8 +176,8 @@ std::string format_number(double value) {
   return buffer;
 }
 
-RunSpec make_spec(const Context& context, const std::string& suite, const std::string& scene,
-                  const std::string& option, Overrides overrides) {
+RunSpec make_spec(const Context& context, const std::string& suite, const std::string& scene, const std::string& option,
+                  Overrides overrides) {
   RunSpec spec;
   spec.suite = suite;
   spec.scene = scene;
@@ -212,8 +212,7 @@ std::vector<RunSpec> ladder_runs(const Context& context) {
         {"sedov", "bulk", bulk, {1, 2, 4}},
         {"sedov", "edge", edge, {1, 2, 4, 8}},
         {"saltzman", "flanagan_belytschko", {}, {1, 2, 4}},
-        {"saltzman", "gamma",
-         {{"numerics.hourglass", "gamma"}, {"numerics.hourglass_coefficient", "0.1"}}, {1, 2, 4}},
+        {"saltzman", "gamma", {{"numerics.hourglass", "gamma"}, {"numerics.hourglass_coefficient", "0.1"}}, {1, 2, 4}},
         {"saltzman", "hourglass_off", {{"numerics.hourglass_coefficient", "0"}}, {1, 2}},
         {"smooth", "default", {}, {1, 2, 4, 8}},
         {"piston", "default", {}, {1, 2, 4, 8}},
@@ -277,12 +276,18 @@ std::vector<RunSpec> throughput_runs(const Context& context) {
       {"copper_block", "gas (no strength)", generated("copper_gas", copper_block(false)), {}},
       {"copper_block", "elastic-plastic", generated("copper_ep", copper_block(true)), {}},
       {"sedov", "features: scene defaults (edge q + hourglass 0.1)", (context.scenes / "sedov.toml").string(), {}},
-      {"sedov", "features: hourglass off", (context.scenes / "sedov.toml").string(),
+      {"sedov",
+       "features: hourglass off",
+       (context.scenes / "sedov.toml").string(),
        {{"numerics.hourglass_coefficient", "0"}}},
       {"sedov", "features: bulk q", (context.scenes / "sedov.toml").string(), {{"numerics.viscosity", "bulk"}}},
-      {"sedov", "features: + unused strength material",
-       generated("sedov_unused_strength", sedov_text + unused_strength_material), {}},
-      {"sedov", "features: + unused burn material", generated("sedov_unused_burn", sedov_text + unused_burn_material),
+      {"sedov",
+       "features: + unused strength material",
+       generated("sedov_unused_strength", sedov_text + unused_strength_material),
+       {}},
+      {"sedov",
+       "features: + unused burn material",
+       generated("sedov_unused_burn", sedov_text + unused_burn_material),
        {}},
   };
   for (const auto& variant : variants)
@@ -312,14 +317,14 @@ std::vector<RunSpec> stress_runs(const Context& context) {
   };
   const std::vector<double> perturbs = context.quick ? std::vector<double>{0.2} : std::vector<double>{0.1, 0.2, 0.3};
   const std::vector<int> seeds = context.quick ? std::vector<int>{1} : std::vector<int>{1, 2};
-  const std::vector<std::string> perturbed = context.quick ? std::vector<std::string>{"sod"}
-                                                           : std::vector<std::string>{"sod", "sedov", "be_shell"};
+  const std::vector<std::string> perturbed =
+      context.quick ? std::vector<std::string>{"sod"} : std::vector<std::string>{"sod", "sedov", "be_shell"};
   for (const auto& scene : perturbed)
     for (const double perturb : perturbs)
       for (const int seed : seeds)
-        runs.push_back(capped(make_spec(context, "stress", scene,
-                                        "perturb=" + format_number(perturb) + " seed=" + std::to_string(seed),
-                                        {{"mesh.perturb", format_number(perturb)}, {"mesh.seed", std::to_string(seed)}})));
+        runs.push_back(capped(
+            make_spec(context, "stress", scene, "perturb=" + format_number(perturb) + " seed=" + std::to_string(seed),
+                      {{"mesh.perturb", format_number(perturb)}, {"mesh.seed", std::to_string(seed)}})));
   const std::vector<double> cfls =
       context.quick ? std::vector<double>{0.5} : std::vector<double>{0.05, 0.1, 0.2, 0.3, 0.4, 0.5};
   for (const std::string scene : {"sod", "sedov"})
@@ -355,10 +360,25 @@ std::string csv_field(const std::string& text) {
   return quoted + "\"";
 }
 
-const std::vector<std::string> fixed_columns = {
-    "suite", "scene", "option", "threads", "zones", "cycles", "wall_seconds", "zone_cycles_per_second",
-    "peak_rss_bytes", "energy_audit", "status", "refine", "setup_seconds", "bytes_per_zone",
-    "baseline_rss_bytes", "t_end", "time", "has_strength", "has_burn"};
+const std::vector<std::string> fixed_columns = {"suite",
+                                                "scene",
+                                                "option",
+                                                "threads",
+                                                "zones",
+                                                "cycles",
+                                                "wall_seconds",
+                                                "zone_cycles_per_second",
+                                                "peak_rss_bytes",
+                                                "energy_audit",
+                                                "status",
+                                                "refine",
+                                                "setup_seconds",
+                                                "bytes_per_zone",
+                                                "baseline_rss_bytes",
+                                                "t_end",
+                                                "time",
+                                                "has_strength",
+                                                "has_burn"};
 
 void write_csv(const std::filesystem::path& path, const std::vector<RunRecord>& records) {
   std::vector<std::string> measure_columns;
@@ -372,9 +392,9 @@ void write_csv(const std::filesystem::path& path, const std::vector<RunRecord>& 
   out << "\n";
   for (const auto& record : records) {
     const RunSpec& spec = record.spec;
-    out << csv_field(spec.suite) << "," << csv_field(spec.scene) << "," << csv_field(spec.option) << ","
-        << spec.threads << "," << record.zones << "," << record.cycles << "," << format_number(record.wall_seconds)
-        << "," << format_number(record.zone_cycles_per_second) << "," << format_number(record.peak_rss_bytes) << ","
+    out << csv_field(spec.suite) << "," << csv_field(spec.scene) << "," << csv_field(spec.option) << "," << spec.threads
+        << "," << record.zones << "," << record.cycles << "," << format_number(record.wall_seconds) << ","
+        << format_number(record.zone_cycles_per_second) << "," << format_number(record.peak_rss_bytes) << ","
         << format_number(record.energy_audit) << "," << csv_field(record.status) << "," << format_number(spec.refine)
         << "," << format_number(record.setup_seconds) << ","
         << format_number(record.zones > 0 ? record.peak_rss_bytes / static_cast<double>(record.zones) : 0.0) << ","
@@ -390,7 +410,9 @@ void write_csv(const std::filesystem::path& path, const std::vector<RunRecord>& 
   write_file_atomically(path.string(), out.str());
 }
 
-bool completed(const RunRecord& record) { return record.status == "completed"; }
+bool completed(const RunRecord& record) {
+  return record.status == "completed";
+}
 
 // Observed order between successive rungs of each ladder: p = ln(e_coarse / e_fine) /
 // ln(refine_fine / refine_coarse) (mesh.refine multiplies the refined counts, so h scales
@@ -451,8 +473,8 @@ std::vector<RunRecord> run_suite(const std::string& suite, const std::vector<Run
   for (const auto& spec : runs) {
     ++index;
     std::cerr << "[" << suite << " " << index << "/" << runs.size() << "] " << spec.scene << " " << spec.option
-              << (spec.suite == "ladders" ? " refine=" + format_number(spec.refine) : "") << " threads="
-              << spec.threads << ": " << std::flush;
+              << (spec.suite == "ladders" ? " refine=" + format_number(spec.refine) : "") << " threads=" << spec.threads
+              << ": " << std::flush;
     // Best of `repeat` (throughput): other load on the machine only ever slows a run down.
     RunRecord best = run_in_child(spec);
     for (int again = 1; again < repeat && completed(best); ++again) {
@@ -550,7 +572,9 @@ int bench_command(const std::vector<std::string>& args) {
       problems += static_cast<int>(std::count_if(records.begin(), records.end(),
                                                  [](const bench::RunRecord& r) { return !bench::completed(r); }));
   }
-  if (problems > 0) std::cout << "stagger bench: " << problems << " ladder/throughput run(s) did not complete (see the status column)\n";
+  if (problems > 0)
+    std::cout << "stagger bench: " << problems
+              << " ladder/throughput run(s) did not complete (see the status column)\n";
   return 0;
 }
 

@@ -22,9 +22,9 @@ struct RunSpec {
   std::string scene_path;
   Overrides overrides;
   int threads = 1;
-  long max_cycles = 0;          ///< 0: run to time.end
+  long max_cycles = 0;             ///< 0: run to time.end
   bool cycles_are_target = false;  ///< reaching max_cycles counts as completed (throughput, long runs)
-  double refine = 1;            ///< ladder coordinate (mesh.refine), for observed orders
+  double refine = 1;               ///< ladder coordinate (mesh.refine), for observed orders
   double timeout_seconds = 900;
 };
 

@@ -78,8 +78,8 @@ Measures measures_of(const NamedValues& errors, const NamedValues& diagnostics) 
     const auto exact = by_name.find(name + "_exact");
     if (exact != by_name.end() && exact->second != 0)
       measures.emplace_back(name + "_relerr", std::abs(value - exact->second) / std::abs(exact->second));
-    const bool symmetry = (name.find("asymmetry") != std::string::npos && name != "asymmetry_groups") ||
-                          name == "max_y_variation";
+    const bool symmetry =
+        (name.find("asymmetry") != std::string::npos && name != "asymmetry_groups") || name == "max_y_variation";
     const bool is_error = name.size() > 6 && name.compare(name.size() - 6, 6, "_error") == 0;
     if (symmetry || is_error) measures.emplace_back(name, std::abs(value));
   }
@@ -175,8 +175,8 @@ RunRecord run_in_child(const RunSpec& spec) {
   RunRecord record;
   record.spec = spec;
   const std::string executable = std::filesystem::read_symlink("/proc/self/exe").string();
-  std::vector<std::string> argv_strings = {executable, "bench", "--one", "--scene", spec.scene_path,
-                                           "--threads", std::to_string(spec.threads)};
+  std::vector<std::string> argv_strings = {
+      executable, "bench", "--one", "--scene", spec.scene_path, "--threads", std::to_string(spec.threads)};
   for (const auto& [key, value] : spec.overrides) {
     argv_strings.push_back("--set");
     argv_strings.push_back(key + "=" + value);
@@ -264,8 +264,8 @@ RunRecord run_in_child(const RunSpec& spec) {
   if (timed_out)
     record.status = "timeout: killed after " + std::to_string(static_cast<long>(spec.timeout_seconds)) + " s";
   else if (WIFSIGNALED(wait_status))
-    record.status = "crashed: signal " + std::to_string(WTERMSIG(wait_status)) + " (" +
-                    strsignal(WTERMSIG(wait_status)) + ")";
+    record.status =
+        "crashed: signal " + std::to_string(WTERMSIG(wait_status)) + " (" + strsignal(WTERMSIG(wait_status)) + ")";
   else if (!got_status)
     record.status = "failed: the child exited with status " + std::to_string(WEXITSTATUS(wait_status)) +
                     " without a report (see the message above)";

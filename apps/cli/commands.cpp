@@ -5,10 +5,9 @@
 #include <omp.h>
 #include <unistd.h>
 
-#include <cmath>
-#include <cstdio>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -136,8 +135,7 @@ void check_output_directory(const std::string& directory) {
   if (existing.empty()) existing = ".";
   const std::string what = "cannot create output directory '" + path.string() + "': ";
   const std::string todo = "; choose a writable output directory (--out)";
-  if (!fs::is_directory(existing, error))
-    throw Error(what + "'" + existing.string() + "' is not a directory" + todo);
+  if (!fs::is_directory(existing, error)) throw Error(what + "'" + existing.string() + "' is not a directory" + todo);
   if (::access(existing.c_str(), W_OK | X_OK) != 0)
     throw Error(what + "'" + existing.string() + "' is not writable" + todo);
 }
@@ -196,20 +194,19 @@ int run_command(const std::vector<std::string>& args) {
 
   check_output_directory(control.output_directory);
   Simulation simulation = set_up(std::move(scene.problem), scene_path);
-  const RunResult result = arguments.has("--restart") ? resume(simulation, control, arguments.value("--restart"))
-                                                      : run(simulation, control);
+  const RunResult result =
+      arguments.has("--restart") ? resume(simulation, control, arguments.value("--restart")) : run(simulation, control);
   if (!quiet) {
     const RunSummary& summary = result.summary;
     const EnergyAudit energy = simulation.energy();
-    const double zone_cycles = static_cast<double>(simulation.mesh().num_zones()) *
-                               static_cast<double>(simulation.cycle());
+    const double zone_cycles =
+        static_cast<double>(simulation.mesh().num_zones()) * static_cast<double>(simulation.cycle());
     std::cout << "stagger run: " << control.name << (result.completed ? " completed" : " STOPPED") << "\n";
     std::cout << "  cycles " << simulation.cycle() << ", t = " << number(simulation.time(), 10) << " of "
               << number(simulation.problem().t_end, 10) << ", last dt " << number(simulation.dt()) << "\n";
     std::cout << "  zones " << simulation.mesh().num_zones() << ", threads " << summary.threads << ", wall "
               << number(summary.wall_seconds, 4) << " s, loop " << number(summary.loop_seconds, 4) << " s, "
-              << number(summary.loop_seconds > 0 ? zone_cycles / summary.loop_seconds : 0.0, 4)
-              << " zone-cycles/s\n";
+              << number(summary.loop_seconds > 0 ? zone_cycles / summary.loop_seconds : 0.0, 4) << " zone-cycles/s\n";
     std::cout << "  energy: initial " << number(energy.initial, 10) << ", final " << number(energy.total, 10)
               << ", boundary work " << number(energy.boundary_work) << ", source work " << number(energy.source_work)
               << ", relative error " << number(energy.relative_error, 3) << "\n";
@@ -283,10 +280,14 @@ int mesh_command(const std::vector<std::string>& args) {
   }
   if (arguments.has("--triangles")) {
     const std::string policy = arguments.value("--triangles");
-    if (policy == "accept") options.triangles = meshgen::TrianglePolicy::accept;
-    else if (policy == "subdivide") options.triangles = meshgen::TrianglePolicy::subdivide;
-    else if (policy == "reject") options.triangles = meshgen::TrianglePolicy::reject;
-    else throw UsageError("--triangles '" + policy + "': use accept, subdivide or reject");
+    if (policy == "accept")
+      options.triangles = meshgen::TrianglePolicy::accept;
+    else if (policy == "subdivide")
+      options.triangles = meshgen::TrianglePolicy::subdivide;
+    else if (policy == "reject")
+      options.triangles = meshgen::TrianglePolicy::reject;
+    else
+      throw UsageError("--triangles '" + policy + "': use accept, subdivide or reject");
   }
   std::string output;
   if (arguments.has("--output")) {
@@ -328,8 +329,8 @@ int mesh_command(const std::vector<std::string>& args) {
     // Atomic like every output (temporary name, checked, fdatasync, rename): gmsh does not report
     // write errors, so the file must end with its last section marker to count as written.
     if (std::filesystem::path(output).extension() == ".msh")
-      write_file_atomically(output, [&](const std::string& temporary) { meshgen::write_msh(temporary, mesh); },
-                            "$EndElements\n");
+      write_file_atomically(
+          output, [&](const std::string& temporary) { meshgen::write_msh(temporary, mesh); }, "$EndElements\n");
     else
       write_mesh_vtu(output, mesh);  // atomic and checked by the VTK writer
     std::cout << "wrote " << output << "\n";

@@ -10,19 +10,18 @@
 //                   scene's [verification] reference has a pointwise solution;
 //   errors_<t>.csv  name,kind,value: the reference's error norms and diagnostics at t.
 // A run that stops with an error writes its last good state as the last frame, the error as
-// the status of summary.json, and exits with code 3. At the end: frames.csv (frame, time, cycle, files), history.csv (energy audit every N
-// cycles, HistoryWriter), summary.json (write_summary at the last time), and for the
-// be_shell reference exact_shell.csv (the analytic radii and kinetic energy on a fine grid).
-// The exact solutions are the classes of stagger/verify.hpp, built from the parameters that
-// the scene reader resolved (Scene::verification), so the profile and summary.json compare
-// against the same reference.
+// the status of summary.json, and exits with code 3. At the end: frames.csv (frame, time, cycle, files), history.csv
+// (energy audit every N cycles, HistoryWriter), summary.json (write_summary at the last time), and for the be_shell
+// reference exact_shell.csv (the analytic radii and kinetic energy on a fine grid). The exact solutions are the classes
+// of stagger/verify.hpp, built from the parameters that the scene reader resolved (Scene::verification), so the profile
+// and summary.json compare against the same reference.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <exception>
-#include <fstream>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <iostream>
 #include <map>
@@ -171,7 +170,8 @@ ReferenceSetup make_reference(const stagger::VerificationSetup& verification) {
       // Strong piston shock into cold gas (Rankine-Hugoniot, p0 = 0): u_s = (gamma+1)/2 u,
       // rho = rho0 (gamma+1)/(gamma-1), p = rho0 u_s u behind it.
       const double shock = 0.5 * (gamma + 1.0) * u * t;
-      if (x < shock) return gas_columns(rho0 * (gamma + 1.0) / (gamma - 1.0), u, 0.0, rho0 * 0.5 * (gamma + 1.0) * u * u, gamma);
+      if (x < shock)
+        return gas_columns(rho0 * (gamma + 1.0) / (gamma - 1.0), u, 0.0, rho0 * 0.5 * (gamma + 1.0) * u * u, gamma);
       return gas_columns(rho0, 0.0, 0.0, 0.0, gamma);
     };
   } else if (const auto* taylor_green = std::get_if<TaylorGreenReference>(&parameters)) {

@@ -24,8 +24,8 @@ int add_tag(PolygonSoup& soup, const std::string& name) {
 }  // namespace
 
 PolygonSoup rectangle(double x0, double x1, double y0, double y1, int nx, int ny) {
-  require(nx > 0 && ny > 0, "rectangle: nx and ny must be positive (got " + std::to_string(nx) +
-                                " x " + std::to_string(ny) + ")");
+  require(nx > 0 && ny > 0,
+          "rectangle: nx and ny must be positive (got " + std::to_string(nx) + " x " + std::to_string(ny) + ")");
   require(x1 > x0 && y1 > y0, "rectangle: need x0 < x1 and y0 < y1");
   PolygonSoup soup;
   soup.source = "rectangle(" + std::to_string(nx) + "x" + std::to_string(ny) + ")";
@@ -41,8 +41,7 @@ PolygonSoup rectangle(double x0, double x1, double y0, double y1, int nx, int ny
     }
   }
   for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i)
-      soup.add_polygon({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)}, 0);
+    for (int i = 0; i < nx; ++i) soup.add_polygon({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)}, 0);
   const int left = add_tag(soup, "left"), right = add_tag(soup, "right");
   const int bottom = add_tag(soup, "bottom"), top = add_tag(soup, "top");
   for (int j = 0; j < ny; ++j) {
@@ -116,8 +115,7 @@ PolygonSoup polar_mesh(const std::string& source, double r0, double r1, double t
 
 }  // namespace
 
-PolygonSoup annulus_sector(double r0, double r1, double theta0, double theta1, int n_theta,
-                           int n_r) {
+PolygonSoup annulus_sector(double r0, double r1, double theta0, double theta1, int n_theta, int n_r) {
   require(n_theta > 0 && n_r > 0, "annulus_sector: n_theta and n_r must be positive");
   require(r0 >= 0 && r1 > r0, "annulus_sector: need 0 <= r0 < r1");
   require(theta1 > theta0 && theta1 - theta0 < 2 * std::numbers::pi,

@@ -69,7 +69,7 @@ bool env_flag(const char* name) {
 /// gmsh::initialize sets OpenMP to gmsh's own thread count (1): the caller's setting is
 /// restored afterwards, so an in-process session does not leave stagger single-threaded.
 class GmshSession {
-public:
+ public:
   GmshSession() : threads_(omp_get_max_threads()) {
     gmsh::initialize(0, nullptr, false);
     // STAGGER_GMSH_VERBOSE=1 shows gmsh's own messages (debugging a .geo).
@@ -106,9 +106,9 @@ public:
       for (const char* prefix : {"Error   : ", "Error : ", "Error: "})
         if (text->rfind(prefix, 0) == 0) text->erase(0, std::string(prefix).size());
     }
-    std::string text = first.empty() ? last
+    std::string text = first.empty()                                           ? last
                        : last.empty() || first.find(last) != std::string::npos ? first
-                                                                                : first + " ... " + last;
+                                                                               : first + " ... " + last;
     // gmsh quotes the offending text of the file: control characters (a vertical tab, an
     // escape sequence) must not reach the user's terminal or split the one error line.
     std::string clean;
@@ -125,7 +125,7 @@ public:
     return clean;
   }
 
-private:
+ private:
   int threads_;
 };
 
@@ -308,8 +308,8 @@ void scan_geo_file(const std::filesystem::path& file, std::set<std::filesystem::
       std::string extension = literal ? std::filesystem::path(tokens[k + 1].text).extension().string() : "";
       std::transform(extension.begin(), extension.end(), extension.begin(),
                      [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-      static const std::set<std::string> readable = {".step", ".stp", ".iges", ".igs", ".brep", ".brp",
-                                                     ".msh", ".stl", ".geo"};
+      static const std::set<std::string> readable = {".step", ".stp", ".iges", ".igs", ".brep",
+                                                     ".brp",  ".msh", ".stl",  ".geo"};
       if (!literal || !readable.count(extension)) {
         found = at(k) + "'" + word + "' of " +
                 (literal ? "a '" + extension + "' file, which gmsh may run" : std::string("a computed file name")) +
@@ -351,7 +351,7 @@ void scan_geo_file(const std::filesystem::path& file, std::set<std::filesystem::
 // rename files. STAGGER_GMSH_IN_PROCESS=1 runs gmsh in-process (debugging; no limits).
 
 class Packer {
-public:
+ public:
   template <class T>
   void value(const T& v) {
     out_.append(reinterpret_cast<const char*>(&v), sizeof(T));
@@ -371,12 +371,12 @@ public:
   }
   const std::string& bytes() const { return out_; }
 
-private:
+ private:
   std::string out_;
 };
 
 class Unpacker {
-public:
+ public:
   explicit Unpacker(const std::string& in) : in_(in) {}
   template <class T>
   T value() {
@@ -408,7 +408,7 @@ public:
   }
   bool at_end() const { return pos_ == in_.size(); }
 
-private:
+ private:
   void take(void* to, std::size_t n) {
     if (n > in_.size() - pos_) throw std::runtime_error("truncated");
     std::memcpy(to, in_.data() + pos_, n);
@@ -511,15 +511,41 @@ bool install_sandbox() {
   jump_if(BPF_JGE, 0x40000000U, kill);  // the x32 ABI: not used by stagger
 #endif
   const long denied[] = {
-      SYS_execve, SYS_execveat, SYS_unlinkat, SYS_renameat, SYS_mkdirat, SYS_linkat, SYS_symlinkat,
-      SYS_fchmod, SYS_fchmodat, SYS_fchown, SYS_fchownat, SYS_truncate, SYS_mknodat, SYS_socket,
-      SYS_ptrace, SYS_kill, SYS_process_vm_writev, SYS_open_by_handle_at,
+    SYS_execve,
+    SYS_execveat,
+    SYS_unlinkat,
+    SYS_renameat,
+    SYS_mkdirat,
+    SYS_linkat,
+    SYS_symlinkat,
+    SYS_fchmod,
+    SYS_fchmodat,
+    SYS_fchown,
+    SYS_fchownat,
+    SYS_truncate,
+    SYS_mknodat,
+    SYS_socket,
+    SYS_ptrace,
+    SYS_kill,
+    SYS_process_vm_writev,
+    SYS_open_by_handle_at,
 #if defined(__x86_64__)
-      SYS_fork, SYS_vfork, SYS_creat, SYS_unlink, SYS_rmdir, SYS_rename, SYS_mkdir, SYS_link, SYS_symlink,
-      SYS_chmod, SYS_chown, SYS_lchown, SYS_mknod,
+    SYS_fork,
+    SYS_vfork,
+    SYS_creat,
+    SYS_unlink,
+    SYS_rmdir,
+    SYS_rename,
+    SYS_mkdir,
+    SYS_link,
+    SYS_symlink,
+    SYS_chmod,
+    SYS_chown,
+    SYS_lchown,
+    SYS_mknod,
 #endif
 #ifdef SYS_renameat2
-      SYS_renameat2,
+    SYS_renameat2,
 #endif
   };
   for (const long nr : denied) jump_if(BPF_JEQ, static_cast<std::uint32_t>(nr), deny);
@@ -573,12 +599,12 @@ bool install_sandbox() {
 
 /// Limits and wording of one child run.
 struct ChildRun {
-  std::string path;         ///< the user's file, for messages
-  std::string doing;        ///< "meshing" or "reading"
-  double seconds = 0;       ///< wall-time limit, 0: none
-  double mib = 0;           ///< address-space limit, 0: none
-  bool sandbox = true;      ///< install the seccomp filter
-  std::string crash_hint;   ///< appended to a crash message
+  std::string path;        ///< the user's file, for messages
+  std::string doing;       ///< "meshing" or "reading"
+  double seconds = 0;      ///< wall-time limit, 0: none
+  double mib = 0;          ///< address-space limit, 0: none
+  bool sandbox = true;     ///< install the seccomp filter
+  std::string crash_hint;  ///< appended to a crash message
 };
 
 std::string limit_text(double value) {
@@ -613,7 +639,7 @@ void out_of_memory() {
   }
   ::dup2(out_fd, 3);
   ::fcntl(3, F_SETFD, FD_CLOEXEC);  // programs the .geo may start (allowed) do not hold the pipe
-  ::close_range(4, ~0U, 0);  // no inherited files (outputs, checkpoints) stay open
+  ::close_range(4, ~0U, 0);         // no inherited files (outputs, checkpoints) stay open
   const rlimit no_core{0, 0};
   ::setrlimit(RLIMIT_CORE, &no_core);
   // AddressSanitizer reserves terabytes of address space for its shadow memory: an
@@ -739,8 +765,8 @@ PolygonSoup read_isolated(const ChildRun& run, const std::function<PolygonSoup()
     if (run.mib > 0 && (used_mib > 0.8 * run.mib || (room_mib > 0 && used_mib - start_vm_mib > 0.3 * room_mib)))
       why = "it probably ran out of memory (about " + limit_text(std::round(used_mib)) + " MiB of its " +
             limit_text(run.mib) + " MiB limit: scene key mesh.gmsh_memory_limit, stagger mesh --gmsh-memory-limit)";
-    throw Error("gmsh crashed (signal " + std::to_string(signal) + ", " + strsignal(signal) + ") " + run.doing +
-                " " + run.path + (why.empty() ? std::string() : ": " + why));
+    throw Error("gmsh crashed (signal " + std::to_string(signal) + ", " + strsignal(signal) + ") " + run.doing + " " +
+                run.path + (why.empty() ? std::string() : ": " + why));
   }
   try {
     return unpack(bytes);
@@ -797,8 +823,7 @@ PolygonSoup extract_soup(const std::string& path) {
   if (groups.empty()) {
     gmsh::vectorpair entities;
     gmsh::model::getEntities(entities, 2);
-    for (const auto& [dim, tag] : entities)
-      regions.push_back({"surface_" + std::to_string(tag), {tag}});
+    for (const auto& [dim, tag] : entities) regions.push_back({"surface_" + std::to_string(tag), {tag}});
   } else {
     for (const auto& [dim, tag] : groups) {
       std::vector<int> entities;
@@ -812,9 +837,10 @@ PolygonSoup extract_soup(const std::string& path) {
     for (int entity : regions[r].second) {
       const auto [it, fresh] = entity_region.emplace(entity, regions[r].first);
       if (!fresh)
-        throw Error(path + ": surface " + std::to_string(entity) + " is in two physical "
-                    "surfaces, '" + it->second + "' and '" + regions[r].first +
-                    "'; a zone can belong to one region only");
+        throw Error(path + ": surface " + std::to_string(entity) +
+                    " is in two physical "
+                    "surfaces, '" +
+                    it->second + "' and '" + regions[r].first + "'; a zone can belong to one region only");
       std::vector<int> types;
       std::vector<std::vector<std::size_t>> element_tags, node_tags;
       gmsh::model::mesh::getElements(types, element_tags, node_tags, 2, entity);
@@ -892,9 +918,8 @@ PolygonSoup extract_soup(const std::string& path) {
       gmsh::model::mesh::getElements(types, element_tags, node_tags, 1, entity);
       for (std::size_t k = 0; k < types.size(); ++k) {
         if (types[k] != kLine2)
-          throw Error(path + ": curve " + std::to_string(entity) + " of physical curve '" +
-                      soup.tag_names.back() + "' has elements of type '" +
-                      element_name(types[k]) + "'; only 2-node lines are supported");
+          throw Error(path + ": curve " + std::to_string(entity) + " of physical curve '" + soup.tag_names.back() +
+                      "' has elements of type '" + element_name(types[k]) + "'; only 2-node lines are supported");
         for (std::size_t e = 0; e + 2 <= node_tags[k].size(); e += 2) {
           edge_nodes.push_back(node_tags[k][e]);
           edge_nodes.push_back(node_tags[k][e + 1]);
@@ -933,8 +958,7 @@ PolygonSoup extract_soup(const std::string& path) {
     found[i] = 1;
   }
   for (std::size_t i = 0; i < used.size(); ++i)
-    if (!found[i])
-      throw Error(path + ": element node " + std::to_string(used[i]) + " has no coordinates");
+    if (!found[i]) throw Error(path + ": element node " + std::to_string(used[i]) + " has no coordinates");
   // The mesh must lie in a plane z = const: x-y is dropped otherwise (and an x-z mesh would
   // collapse into duplicate points).
   {
@@ -1025,8 +1049,7 @@ void require_planar_model(const std::string& path, bool volume_entities_count) {
 /// quad 4). Only if there are triangles. A tagged edge is split at its midpoint.
 void subdivide_soup(PolygonSoup& soup) {
   if (count_triangles(soup) == 0) return;
-  if (soup.x.size() >= (std::size_t{1} << 31))
-    throw Error(soup.source + ": too many points to subdivide");
+  if (soup.x.size() >= (std::size_t{1} << 31)) throw Error(soup.source + ": too many points to subdivide");
   std::unordered_map<std::uint64_t, std::int64_t> midpoint;
   const auto key = [](std::int64_t a, std::int64_t b) {
     return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint64_t>(std::max(a, b));
@@ -1087,8 +1110,7 @@ void apply_policy(const PolygonSoup& soup, TrianglePolicy policy) {
   if (policy != TrianglePolicy::reject) return;
   const std::size_t n = count_triangles(soup);
   if (n > 0)
-    throw Error(soup.source + ": " + std::to_string(n) + " of " +
-                std::to_string(soup.num_polygons()) +
+    throw Error(soup.source + ": " + std::to_string(n) + " of " + std::to_string(soup.num_polygons()) +
                 " zones are triangles and the triangle policy is 'reject'; use 'accept' "
                 "(mixed zones) or 'subdivide' (all quads), or make the surface transfinite");
 }
@@ -1102,9 +1124,8 @@ void apply_policy(const PolygonSoup& soup, TrianglePolicy policy) {
 /// or read it, and the .geo's path is quoted with a delimiter it does not contain (gmsh
 /// strings have no escapes).
 class ParameterWrapper {
-public:
-  ParameterWrapper(const std::string& path,
-                   const std::vector<std::pair<std::string, double>>& parameters) {
+ public:
+  ParameterWrapper(const std::string& path, const std::vector<std::pair<std::string, double>>& parameters) {
     if (parameters.empty()) {
       file_ = path;
       return;
@@ -1115,31 +1136,27 @@ public:
     for (const auto& [name, value] : parameters) {
       const bool identifier =
           !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') &&
-          std::all_of(name.begin(), name.end(), [](unsigned char ch) {
-            return std::isalnum(ch) || ch == '_';
-          });
-      if (!identifier)
-        throw Error(path + ": parameter name '" + name + "' is not a valid .geo identifier");
+          std::all_of(name.begin(), name.end(), [](unsigned char ch) { return std::isalnum(ch) || ch == '_'; });
+      if (!identifier) throw Error(path + ": parameter name '" + name + "' is not a valid .geo identifier");
       if (!contains_word(text, name))
-        throw Error(path + ": unknown parameter '" + name +
-                    "' (the file never mentions it; check the spelling)");
+        throw Error(path + ": unknown parameter '" + name + "' (the file never mentions it; check the spelling)");
       wrapper << name << " = " << number_text(value) << ";\n";
     }
     const std::string absolute = std::filesystem::absolute(path).lexically_normal().string();
-    const bool control = std::any_of(absolute.begin(), absolute.end(),
-                                     [](unsigned char ch) { return ch < 0x20 || ch == 0x7f; });
+    const bool control =
+        std::any_of(absolute.begin(), absolute.end(), [](unsigned char ch) { return ch < 0x20 || ch == 0x7f; });
     const char quote = absolute.find('"') == std::string::npos ? '"' : '\'';
     if (control || absolute.find(quote) != std::string::npos || absolute.size() > 1000)
       throw Error(path + ": gmsh cannot include this path with parameters (it " +
-                  (control ? std::string("contains a control character such as a newline")
+                  (control                  ? std::string("contains a control character such as a newline")
                    : absolute.size() > 1000 ? std::string("is longer than 1000 characters")
                                             : std::string("contains both \" and ' quotes")) +
                   "); rename the file or its directories");
     wrapper << "Include " << quote << absolute << quote << ";\n";
     std::string directory = (std::filesystem::temp_directory_path() / "stagger-geo-XXXXXX").string();
     if (!::mkdtemp(directory.data()))
-      throw Error(path + ": cannot create a private temporary directory for the parameter wrapper: " +
-                  std::strerror(errno));
+      throw Error(path +
+                  ": cannot create a private temporary directory for the parameter wrapper: " + std::strerror(errno));
     directory_ = directory;
     file_ = (directory_ / "parameters.geo").string();
     const int fd = ::open(file_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
@@ -1156,11 +1173,9 @@ public:
   ParameterWrapper& operator=(const ParameterWrapper&) = delete;
   const std::string& file() const { return file_; }
 
-private:
+ private:
   static bool contains_word(const std::string& text, const std::string& word) {
-    const auto is_id = [](char ch) {
-      return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
-    };
+    const auto is_id = [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'; };
     for (auto pos = text.find(word); pos != std::string::npos; pos = text.find(word, pos + 1)) {
       const bool left = pos == 0 || !is_id(text[pos - 1]);
       const bool right = pos + word.size() == text.size() || !is_id(text[pos + word.size()]);
@@ -1195,7 +1210,8 @@ PolygonSoup read_geo(const std::string& path, const GeoOptions& options) {
   if (!options.allow_commands && !(scan && std::string(scan) == "0")) {
     const std::string found = find_outside_command(path);
     if (!found.empty())
-      throw Error(found + "; stagger refuses .geo commands that reach outside the mesh (set "
+      throw Error(found +
+                  "; stagger refuses .geo commands that reach outside the mesh (set "
                   "mesh.allow_geo_commands = true, or stagger mesh --allow-geo-commands, to allow them: "
                   "that runs arbitrary code)");
   }
@@ -1208,7 +1224,8 @@ PolygonSoup read_geo(const std::string& path, const GeoOptions& options) {
   run.sandbox = !options.allow_commands;
   run.crash_hint =
       "gmsh 4.8 crashes on some inputs, e.g. MeshAlgorithm Surface{...} = 8 (use 6 there) or a command "
-      "after which it does not recover from an error; run 'gmsh -2 " + path + "' to see where it fails";
+      "after which it does not recover from an error; run 'gmsh -2 " +
+      path + "' to see where it fails";
   PolygonSoup soup = read_isolated(run, [&] {
     gmsh::open(wrapper.file());
     throw_if_gmsh_error(path, "reading");
@@ -1251,8 +1268,10 @@ PolygonSoup read_msh(const std::string& path, const GeoOptions& options) {
   run.seconds = options.time_limit_seconds;
   run.mib = options.memory_limit_mib;
   run.sandbox = true;  // a .msh holds no commands
-  run.crash_hint = "the file is corrupt (e.g. an element refers to a node that $Nodes does not define); "
-                   "check it with 'gmsh " + path + " -0' or re-export it";
+  run.crash_hint =
+      "the file is corrupt (e.g. an element refers to a node that $Nodes does not define); "
+      "check it with 'gmsh " +
+      path + " -0' or re-export it";
   PolygonSoup soup = read_isolated(run, [&] {
     gmsh::open(path);
     throw_if_gmsh_error(path, "reading");
@@ -1283,8 +1302,8 @@ void write_msh(const std::string& path, const Mesh& mesh) {
   for (Index z = 0; z < mesh.num_zones(); ++z) {
     const Index n = mesh.zone_corner_begin[z + 1] - mesh.zone_corner_begin[z];
     if (n != 3 && n != 4)
-      throw Error("write_msh " + path + ": zone " + std::to_string(z) + " has " +
-                  std::to_string(n) + " corners; MSH stores only triangles and quadrangles");
+      throw Error("write_msh " + path + ": zone " + std::to_string(z) + " has " + std::to_string(n) +
+                  " corners; MSH stores only triangles and quadrangles");
   }
   with_gmsh(path, [&] {
     gmsh::model::add("stagger");
@@ -1311,10 +1330,8 @@ void write_msh(const std::string& path, const Mesh& mesh) {
         tags.push_back(element++);
         for (Index c = b; c < e; ++c) nodes.push_back(static_cast<std::size_t>(mesh.corner_point[c]) + 1);
       }
-      if (!tri_tags.empty())
-        gmsh::model::mesh::addElementsByType(r + 1, kTriangle3, tri_tags, tri_nodes);
-      if (!quad_tags.empty())
-        gmsh::model::mesh::addElementsByType(r + 1, kQuad4, quad_tags, quad_nodes);
+      if (!tri_tags.empty()) gmsh::model::mesh::addElementsByType(r + 1, kTriangle3, tri_tags, tri_nodes);
+      if (!quad_tags.empty()) gmsh::model::mesh::addElementsByType(r + 1, kQuad4, quad_tags, quad_nodes);
       gmsh::model::addPhysicalGroup(2, {r + 1}, r + 1);
       gmsh::model::setPhysicalName(2, r + 1, mesh.region_names[static_cast<std::size_t>(r)]);
     }
@@ -1327,8 +1344,7 @@ void write_msh(const std::string& path, const Mesh& mesh) {
         line_nodes.push_back(static_cast<std::size_t>(edge[0]) + 1);
         line_nodes.push_back(static_cast<std::size_t>(edge[1]) + 1);
       }
-      if (!line_tags.empty())
-        gmsh::model::mesh::addElementsByType(entity, kLine2, line_tags, line_nodes);
+      if (!line_tags.empty()) gmsh::model::mesh::addElementsByType(entity, kLine2, line_tags, line_nodes);
       gmsh::model::addPhysicalGroup(1, {entity}, entity);
       gmsh::model::setPhysicalName(1, entity, mesh.tags[t].name);
     }

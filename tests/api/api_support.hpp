@@ -23,8 +23,8 @@ inline BoundaryCondition wall(const std::string& tag) {
 
 /// A shock tube on [0,1]x[0,0.1], nx x 4 zones, walls all round (docs/verification.md §1
 /// for the default states).
-inline Problem shock_tube(int nx, double t_end, double rho_left = 1.0, double p_left = 1.0,
-                          double rho_right = 0.125, double p_right = 0.1, double gamma = 1.4) {
+inline Problem shock_tube(int nx, double t_end, double rho_left = 1.0, double p_left = 1.0, double rho_right = 0.125,
+                          double p_right = 0.1, double gamma = 1.4) {
   Problem problem;
   problem.name = "shock_tube";
   problem.mesh = build_mesh(meshgen::rectangle(0.0, 1.0, 0.0, 0.1, nx, 4));
@@ -69,8 +69,7 @@ inline void expect_same_state(const Simulation& a, const Simulation& b) {
       {"zone_mass", &Simulation::zone_mass},
       {"point_mass", &Simulation::point_mass},
   };
-  for (const auto& [name, field] : fields)
-    EXPECT_TRUE(bitwise_equal((a.*field)(), (b.*field)())) << name << " differs";
+  for (const auto& [name, field] : fields) EXPECT_TRUE(bitwise_equal((a.*field)(), (b.*field)())) << name << " differs";
   const EnergyAudit ea = a.energy(), eb = b.energy();
   EXPECT_EQ(std::memcmp(&ea.relative_error, &eb.relative_error, sizeof(double)), 0);
 }

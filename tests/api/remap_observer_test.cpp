@@ -21,7 +21,7 @@ using api_test::shock_tube;
 /// An example remap: it moves no point, but checks the contract of stagger::Remap — called
 /// once per cycle, after the Lagrangian step, with the simulation's own consistent state.
 class CheckingRemap final : public Remap {
-public:
+ public:
   explicit CheckingRemap(const Simulation& simulation) : simulation_(simulation) {}
 
   bool remap(RemapState& state) override {
@@ -62,7 +62,7 @@ public:
   long calls = 0, last_cycle = 0;
   double last_time = 0, initial_mass = 0;
 
-private:
+ private:
   const Simulation& simulation_;
 };
 

@@ -53,7 +53,9 @@ struct Case {
 };
 
 // gtest prints the parameter in test listings (ctest): the case name, not its bytes.
-void PrintTo(const Case& c, std::ostream* out) { *out << c.name; }
+void PrintTo(const Case& c, std::ostream* out) {
+  *out << c.name;
+}
 
 std::vector<Case> read_cases() {
   std::ifstream in(kCases / "cases.txt");
@@ -174,7 +176,8 @@ TEST_P(BadInput, FailsCleanlyWithTheExpectedMessage) {
       EXPECT_EQ(o.exit_code, 0) << describe(command, o);
       EXPECT_TRUE(errors.empty()) << describe(command, o);
       if (c.mode == "repair") {
-        const auto notes = lines_starting(command == "check" ? o.out : o.err, command == "check" ? "  note: " : "stagger: note: ");
+        const auto notes =
+            lines_starting(command == "check" ? o.out : o.err, command == "check" ? "  note: " : "stagger: note: ");
         bool found = false;
         for (const auto& note : notes)
           for (const auto& text : expected) found = found || note.find(text) != std::string::npos;
@@ -204,7 +207,9 @@ TEST_P(BadInput, FailsCleanlyWithTheExpectedMessage) {
   }
 }
 
-std::string case_name(const testing::TestParamInfo<Case>& info) { return info.param.name; }
+std::string case_name(const testing::TestParamInfo<Case>& info) {
+  return info.param.name;
+}
 
 INSTANTIATE_TEST_SUITE_P(Catalogue, BadInput, testing::ValuesIn(read_cases()), case_name);
 

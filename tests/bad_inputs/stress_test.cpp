@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
-#include <iostream>
 #include <cmath>
+#include <iostream>
 #include <span>
 #include <string>
 #include <utility>
@@ -51,9 +51,9 @@ StressResult stress(const std::string& scene, const Overrides& overrides, long m
                   all_finite(simulation.specific_internal_energy()) && all_finite(simulation.velocity_x()) &&
                   all_finite(simulation.velocity_y()))
           << "non-finite state committed at cycle " << simulation.cycle();
-      if (simulation.cycle() >= max_cycles ||
-          std::chrono::steady_clock::now() - start > std::chrono::seconds(30)) {
-        ADD_FAILURE() << scene << ": no progress (hang?) at cycle " << simulation.cycle() << ", t = " << simulation.time();
+      if (simulation.cycle() >= max_cycles || std::chrono::steady_clock::now() - start > std::chrono::seconds(30)) {
+        ADD_FAILURE() << scene << ": no progress (hang?) at cycle " << simulation.cycle()
+                      << ", t = " << simulation.time();
         break;
       }
     }
@@ -68,8 +68,10 @@ StressResult stress(const std::string& scene, const Overrides& overrides, long m
 
 void print(const StressResult& r, const std::string& label) {
   std::cout << "  " << label << ": " << r.cycles << " cycles, ";
-  if (r.completed) std::cout << "completed, relative energy error " << r.relative_energy_error << "\n";
-  else std::cout << "stopped: " << r.message << "\n";
+  if (r.completed)
+    std::cout << "completed, relative energy error " << r.relative_energy_error << "\n";
+  else
+    std::cout << "stopped: " << r.message << "\n";
 }
 
 // Reached t_end with the audit at round-off.
@@ -105,7 +107,8 @@ TEST(Stress, SodCflSweepCompletesWithEnergyAtRoundOff) {
 // viscosity and hourglass control) must then carry the same meshes to t_end.
 TEST(Stress, PerturbedSodMeshesTangleWithBulkQAndCompleteWithTheSuggestedRemedy) {
   for (const char* seed : {"1", "2", "3"}) {
-    const Overrides mesh = {{"mesh.refine", "0.5"}, {"mesh.perturb", "0.3"}, {"mesh.seed", seed}, {"numerics.cfl", "0.25"}};
+    const Overrides mesh = {
+        {"mesh.refine", "0.5"}, {"mesh.perturb", "0.3"}, {"mesh.seed", seed}, {"numerics.cfl", "0.25"}};
     expect_stopped(stress("sod", mesh), std::string("perturbed sod, seed ") + seed, "tangled");
     Overrides remedy = mesh;
     remedy.push_back({"numerics.viscosity", "edge"});
@@ -130,8 +133,8 @@ TEST(Stress, PerturbedSedovMeshStopsHonestlyAndCompletesWithSubzonalPressures) {
 TEST(Stress, PerturbedShellMeshCompletesUpToCfl04) {
   // The Be shell (Mie-Gruneisen with strength) on a 10 x 8 quarter shell, 20 us.
   for (const char* cfl : {"0.1", "0.4"}) {
-    const StressResult r = stress("be_shell", {{"mesh.refine", "0.5"}, {"mesh.perturb", "0.3"}, {"time.end", "20e-6"},
-                                               {"numerics.cfl", cfl}});
+    const StressResult r = stress(
+        "be_shell", {{"mesh.refine", "0.5"}, {"mesh.perturb", "0.3"}, {"time.end", "20e-6"}, {"numerics.cfl", cfl}});
     expect_completed(r, std::string("perturbed shell, cfl ") + cfl);
   }
 }

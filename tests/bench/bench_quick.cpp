@@ -88,9 +88,8 @@ const fs::path& quick_bench_output() {
     const bool fresh = fs::exists(stamp) && fs::last_write_time(stamp) > fs::last_write_time(stagger_binary);
     if (!fresh) {
       fs::remove_all(quick_out);
-      const std::string command =
-          "'" + stagger_binary + "' bench --quick --out '" + quick_out.string() + "' > '" + quick_out.string() +
-          ".log' 2>&1";
+      const std::string command = "'" + stagger_binary + "' bench --quick --out '" + quick_out.string() + "' > '" +
+                                  quick_out.string() + ".log' 2>&1";
       if (std::system(command.c_str()) == 0) std::ofstream(stamp) << "ok\n";
     }
     if (lock != nullptr) {
@@ -117,9 +116,9 @@ std::string python_with_matplotlib() {
 TEST(BenchQuick, WritesOneCsvPerSuiteWithTheRequiredColumns) {
   const fs::path& out = quick_bench_output();
   ASSERT_TRUE(fs::exists(out / "stamp")) << "stagger bench --quick failed; see " << out.string() << ".log";
-  const std::vector<std::string> required = {"suite", "scene", "option", "threads", "zones", "cycles",
-                                             "wall_seconds", "zone_cycles_per_second", "peak_rss_bytes",
-                                             "energy_audit"};
+  const std::vector<std::string> required = {"suite",          "scene",       "option",       "threads",
+                                             "zones",          "cycles",      "wall_seconds", "zone_cycles_per_second",
+                                             "peak_rss_bytes", "energy_audit"};
   for (const std::string suite : {"ladders", "throughput", "stress"}) {
     const Table table = read_csv(out / (suite + ".csv"));
     ASSERT_FALSE(table.rows.empty()) << suite << ".csv has no rows";
@@ -191,7 +190,8 @@ TEST(BenchQuick, StressRunsHaveTheirExpectedOutcome) {
       }
     } else {
       EXPECT_EQ(status.rfind("stopped: ", 0), 0u) << key << ": " << status;
-      for (const std::string& part : {outcome->second, std::string("zone "), std::string("cycle "), std::string("t = ")})
+      for (const std::string& part :
+           {outcome->second, std::string("zone "), std::string("cycle "), std::string("t = ")})
         EXPECT_NE(status.find(part), std::string::npos) << key << ": " << part << " missing in " << status;
     }
     if (key.find("long 2000 cycles") != std::string::npos) {
@@ -236,8 +236,8 @@ TEST(BenchQuick, PlotScriptWritesTheFigures) {
 }
 
 TEST(BenchCommand, UnknownSuiteIsOneLineErrorAndExitOne) {
-  const std::string command = "'" + stagger_binary + "' bench nosuch --out /tmp/never_written 2> '" +
-                              quick_out.string() + ".err'";
+  const std::string command =
+      "'" + stagger_binary + "' bench nosuch --out /tmp/never_written 2> '" + quick_out.string() + ".err'";
   const int status = std::system(command.c_str());
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 1);
@@ -250,8 +250,10 @@ TEST(BenchCommand, UnknownSuiteIsOneLineErrorAndExitOne) {
 TEST(BenchCommand, ABadOverrideBecomesAFailedRowNotACrash) {
   fs::create_directories(quick_out.parent_path());
   const fs::path report = quick_out.string() + ".one";
-  const std::string command = "'" + stagger_binary + "' bench --one --scene '" STAGGER_SOURCE_DIR
-                              "/apps/scenes/sod.toml' --set mesh.no_such_key=1 > '" + report.string() + "'";
+  const std::string command = "'" + stagger_binary +
+                              "' bench --one --scene '" STAGGER_SOURCE_DIR
+                              "/apps/scenes/sod.toml' --set mesh.no_such_key=1 > '" +
+                              report.string() + "'";
   ASSERT_EQ(std::system(command.c_str()), 0);
   std::ifstream in(report);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -6,13 +6,13 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <set>
+#include <sstream>
 #include <string>
-#include <chrono>
 #include <thread>
 
 namespace fs = std::filesystem;
@@ -32,7 +32,7 @@ std::string read_text(const fs::path& path) {
 }
 
 class Cli : public ::testing::Test {
-protected:
+ protected:
   void SetUp() override {
     // The pid keeps concurrent test runs (several build trees on one machine) apart.
     directory_ = fs::temp_directory_path() /
@@ -46,8 +46,8 @@ protected:
   // Runs `stagger ARGS` with stdout and stderr captured in files.
   Result stagger(const std::string& args) const {
     const fs::path out = directory_ / "stdout.txt", err = directory_ / "stderr.txt";
-    const std::string command = std::string(STAGGER_BINARY_DIR) + "/bin/stagger " + args + " >" + out.string() +
-                                " 2>" + err.string() + " </dev/null";
+    const std::string command = std::string(STAGGER_BINARY_DIR) + "/bin/stagger " + args + " >" + out.string() + " 2>" +
+                                err.string() + " </dev/null";
     const int raw = std::system(command.c_str());
     Result result;
     result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
@@ -178,7 +178,8 @@ TEST_F(Cli, MeshesEveryGeometryAndWritesVtuAndMsh) {
     const Result again = stagger("mesh " + msh.string());
     EXPECT_EQ(again.status, 0) << stem << ": " << again.err;
     const auto zones = [](const std::string& out) { return out.substr(0, out.find(" zones")); };
-    EXPECT_EQ(zones(again.out).substr(zones(again.out).rfind(' ')), zones(to_vtu.out).substr(zones(to_vtu.out).rfind(' ')))
+    EXPECT_EQ(zones(again.out).substr(zones(again.out).rfind(' ')),
+              zones(to_vtu.out).substr(zones(to_vtu.out).rfind(' ')))
         << stem;
   }
   EXPECT_GE(count, 4);
@@ -243,8 +244,8 @@ TEST_F(Cli, MeshOutputIsAtomicAndAFullDiskIsAnError) {
     std::ofstream(target) << "previous";
     const std::string limited = "sh -c 'ulimit -f 4; exec " + std::string(STAGGER_BINARY_DIR) + "/bin/stagger mesh " +
                                 geo + " --set nx=400 -o " + target.string() + "'";
-    const int raw = std::system((limited + " >" + (directory_ / "o.txt").string() + " 2>" +
-                                 (directory_ / "e.txt").string()).c_str());
+    const int raw = std::system(
+        (limited + " >" + (directory_ / "o.txt").string() + " 2>" + (directory_ / "e.txt").string()).c_str());
     const std::string err = read_text(directory_ / "e.txt");
     EXPECT_EQ(WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, 1) << err;
     EXPECT_NE(err.find("stagger: error: cannot write '" + target.string() + "'"), std::string::npos) << err;
@@ -290,8 +291,7 @@ TEST_F(Cli, SetUpsThatMakeNoSenseGetAWarning) {
     std::string name, edit_from, edit_to, expected;
   };
   const std::vector<Case> cases = {
-      {"few_cycles", "end = 0.1", "end = 0.001",
-       "few_cycles.toml:4: key 'time.end': 0.001 is about 1 time step(s)"},
+      {"few_cycles", "end = 0.1", "end = 0.001", "few_cycles.toml:4: key 'time.end': 0.001 is about 1 time step(s)"},
       {"fast", "pressure = \"x < 0.5 ? 1.0 : 0.1\"", "pressure = \"x < 0.5 ? 1.0 : 0.1\"\nvelocity = [30.0, 0.0]",
        "fast.toml:20: key 'region[0].velocity': the initial speed is above 10 times the sound speed in 10 zone(s)"},
   };
@@ -306,8 +306,7 @@ TEST_F(Cli, SetUpsThatMakeNoSenseGetAWarning) {
     EXPECT_NE(check.out.find("scene is valid (with warnings"), std::string::npos) << check.out;
     const Result run = stagger("run " + path + " --out " + (directory_ / ("run_" + c.name)).string());
     EXPECT_EQ(run.status, 0) << run.err;
-    EXPECT_NE(run.err.find("stagger: warning: " + std::string(directory_ / c.expected)), std::string::npos)
-        << run.err;
+    EXPECT_NE(run.err.find("stagger: warning: " + std::string(directory_ / c.expected)), std::string::npos) << run.err;
   }
 }
 

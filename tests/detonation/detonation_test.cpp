@@ -19,7 +19,9 @@ namespace {
 
 using Overrides = std::vector<std::pair<std::string, std::string>>;
 
-std::string scene_path(const char* name) { return std::string(STAGGER_SOURCE_DIR) + "/apps/scenes/" + name; }
+std::string scene_path(const char* name) {
+  return std::string(STAGGER_SOURCE_DIR) + "/apps/scenes/" + name;
+}
 
 double lookup(const NamedValues& values, const std::string& name) {
   for (const auto& [key, value] : values)
@@ -50,10 +52,11 @@ TEST(PlanarDetonation, FrontPlateauAndEnergyOnACoarseMesh) {
   const double plateau = lookup(diagnostics, "plateau_pressure");
   const double plateau_exact = lookup(diagnostics, "plateau_pressure_exact");
   const double peak = lookup(diagnostics, "peak_pressure"), cj = lookup(diagnostics, "cj_pressure_exact");
-  std::printf("[ numbers  ] detonation 200x1: cycles %ld front %.5f (D t %.5f, nominal %.5f) plateau %.6f (exact %.6f) "
-              "peak %.4f (P_CJ %.4f) L1_pressure %.3e audit %.2e\n",
-              sim.cycle(), front, front_exact, lookup(diagnostics, "front_position_nominal"), plateau, plateau_exact, peak,
-              cj, lookup(errors, "L1_pressure"), sim.energy().relative_error);
+  std::printf(
+      "[ numbers  ] detonation 200x1: cycles %ld front %.5f (D t %.5f, nominal %.5f) plateau %.6f (exact %.6f) "
+      "peak %.4f (P_CJ %.4f) L1_pressure %.3e audit %.2e\n",
+      sim.cycle(), front, front_exact, lookup(diagnostics, "front_position_nominal"), plateau, plateau_exact, peak, cj,
+      lookup(errors, "L1_pressure"), sim.energy().relative_error);
   EXPECT_NEAR(front / front_exact, 1.0, 0.02);
   EXPECT_NEAR(plateau / plateau_exact, 1.0, 0.02);
   // The chemical energy is in e from t = 0: burning only converts it, so E is constant.
@@ -77,10 +80,11 @@ TEST(PlanarDetonation, PressureProfileFollowsTheTaylorWaveAtSeveralTimes) {
     reference(sim, errors, diagnostics);
     const double l1 = lookup(errors, "L1_pressure");
     const double plateau = lookup(diagnostics, "plateau_pressure");
-    std::printf("[ numbers  ] t = %.1f us: L1_pressure %.3e Mbar (%.2f%% of P_CJ over the bar), plateau %.6f, front %.4f "
-                "(D t %.4f)\n",
-                t, l1, 100 * l1 / exact.cj_state().pressure, plateau, lookup(diagnostics, "front_position"),
-                exact.cj_speed() * t);
+    std::printf(
+        "[ numbers  ] t = %.1f us: L1_pressure %.3e Mbar (%.2f%% of P_CJ over the bar), plateau %.6f, front %.4f "
+        "(D t %.4f)\n",
+        t, l1, 100 * l1 / exact.cj_state().pressure, plateau, lookup(diagnostics, "front_position"),
+        exact.cj_speed() * t);
     // L1 is over the whole bar (1 cm), most of it unburnt and exact: scale by the burnt part.
     EXPECT_LT(l1 / (exact.cj_speed() * t), 0.05 * exact.cj_state().pressure) << "t = " << t;
     EXPECT_NEAR(plateau / exact.plateau_pressure(), 1.0, 0.02) << "t = " << t;
@@ -90,9 +94,9 @@ TEST(PlanarDetonation, PressureProfileFollowsTheTaylorWaveAtSeveralTimes) {
 // Burn fraction in [0, 1], never decreasing in any zone, recorded every cycle; 1 behind the
 // front, 0 well ahead of it.
 TEST(ProgrammedBurn, FractionNeverDecreasesAndIsOneBehindTheFront) {
-  Simulation sim = load("detonation.toml",
-                        {{"mesh.nx", "40"}, {"mesh.ny", "2"}, {"mesh.x", "[0.0, 0.4]"}, {"mesh.y", "[0.0, 0.02]"},
-                         {"time.end", "0.4"}});
+  Simulation sim = load(
+      "detonation.toml",
+      {{"mesh.nx", "40"}, {"mesh.ny", "2"}, {"mesh.x", "[0.0, 0.4]"}, {"mesh.y", "[0.0, 0.02]"}, {"time.end", "0.4"}});
   ASSERT_TRUE(sim.has_burn());
   std::vector<double> previous(sim.burn_fraction().begin(), sim.burn_fraction().end());
   for (double f : previous) EXPECT_EQ(f, 0.0);
@@ -147,7 +151,8 @@ TEST(HePlate, DetonationDrivesTheCopperPlateWithEnergyAtRoundOff) {
   double plastic = 0, burn_min = 1;
   for (Index z = 0; z < mesh.num_zones(); ++z) {
     if (mesh.zone_region[z] != copper) continue;
-    for (Index c = mesh.zone_corner_begin[z]; c < mesh.zone_corner_begin[z + 1]; ++c) in_plate[mesh.corner_point[c]] = 1;
+    for (Index c = mesh.zone_corner_begin[z]; c < mesh.zone_corner_begin[z + 1]; ++c)
+      in_plate[mesh.corner_point[c]] = 1;
     plastic = std::max(plastic, sim.plastic_strain()[z]);
     burn_min = std::min(burn_min, sim.burn_fraction()[z]);
   }
@@ -155,13 +160,14 @@ TEST(HePlate, DetonationDrivesTheCopperPlateWithEnergyAtRoundOff) {
   for (Index p = 0; p < mesh.num_points(); ++p)
     if (in_plate[p]) momentum += sim.point_mass()[p] * sim.velocity_x()[p], mass += sim.point_mass()[p];
   const EnergyAudit audit = sim.energy();
-  std::printf("[ numbers  ] he_plate: cycles %ld plate mean u %.4f cm/us, max plastic strain %.3e, audit %.2e "
-              "(E0 %.5e, KE %.5e)\n",
-              sim.cycle(), momentum / mass, plastic, audit.relative_error, audit.initial, audit.kinetic);
+  std::printf(
+      "[ numbers  ] he_plate: cycles %ld plate mean u %.4f cm/us, max plastic strain %.3e, audit %.2e "
+      "(E0 %.5e, KE %.5e)\n",
+      sim.cycle(), momentum / mass, plastic, audit.relative_error, audit.initial, audit.kinetic);
   EXPECT_LT(std::abs(audit.relative_error), 1e-12);
   EXPECT_GT(momentum / mass, 0.01);  // pushed forward (+x), at a fair fraction of u_CJ
-  EXPECT_GT(plastic, 0.0);            // 30 GPa shock: far beyond Y = 90 MPa
-  EXPECT_EQ(burn_min, 1.0);           // inert zones carry the factor 1
+  EXPECT_GT(plastic, 0.0);           // 30 GPa shock: far beyond Y = 90 MPa
+  EXPECT_EQ(burn_min, 1.0);          // inert zones carry the factor 1
 }
 
 }  // namespace stagger

@@ -24,9 +24,11 @@ TEST(DocsTables, CheapVerificationTablesMatchTheCode) {
   const std::string python = python_with_matplotlib();
   if (python.empty()) GTEST_SKIP() << "no python3 with matplotlib and numpy (apt-get install python3-matplotlib)";
   const std::string log = STAGGER_BINARY_DIR "/tests/check_tables.log";
-  const std::string command = "OMP_NUM_THREADS=1 " + python + " '" STAGGER_SOURCE_DIR
+  const std::string command = "OMP_NUM_THREADS=1 " + python +
+                              " '" STAGGER_SOURCE_DIR
                               "/scripts/verification/check_tables.py' --build '" STAGGER_BINARY_DIR
-                              "' --work '" STAGGER_BINARY_DIR "/tests/verification-check' > '" + log + "' 2>&1";
+                              "' --work '" STAGGER_BINARY_DIR "/tests/verification-check' > '" +
+                              log + "' 2>&1";
   const int status = std::system(command.c_str());
   std::ifstream in(log);
   const std::string output((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

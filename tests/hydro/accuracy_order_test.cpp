@@ -55,8 +55,14 @@ TEST(Noh, PolarMeshStaysRadiallySymmetricWithTheEdgeViscosity) {
   r.material = "gas";
   r.density = constant_field(1.0);
   r.specific_internal_energy = constant_field(0.0);
-  r.velocity_x = [](double x, double y) { const double d = std::hypot(x, y); return d > 0 ? -x / d : 0.0; };
-  r.velocity_y = [](double x, double y) { const double d = std::hypot(x, y); return d > 0 ? -y / d : 0.0; };
+  r.velocity_x = [](double x, double y) {
+    const double d = std::hypot(x, y);
+    return d > 0 ? -x / d : 0.0;
+  };
+  r.velocity_y = [](double x, double y) {
+    const double d = std::hypot(x, y);
+    return d > 0 ? -y / d : 0.0;
+  };
   p.regions.push_back(r);
   walls(p, {"start", "end"});
   p.boundaries.push_back(boundary("outer", BoundaryKind::free));

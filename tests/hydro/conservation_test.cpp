@@ -52,7 +52,8 @@ TEST(Conservation, MomentumIsConservedInAPeriodicBoxWithRandomVelocities) {
   r.velocity_x = [](double x, double y) { return 0.3 * std::sin(2 * M_PI * x) * std::cos(4 * M_PI * y) + 0.2; };
   r.velocity_y = [](double x, double y) { return 0.2 * std::cos(6 * M_PI * x + 1) * std::sin(2 * M_PI * y) - 0.1; };
   p.regions.push_back(r);
-  BoundaryCondition left = boundary("left", BoundaryKind::periodic), bottom = boundary("bottom", BoundaryKind::periodic);
+  BoundaryCondition left = boundary("left", BoundaryKind::periodic),
+                    bottom = boundary("bottom", BoundaryKind::periodic);
   left.partner = "right";
   bottom.partner = "top";
   p.boundaries = {left, bottom};
@@ -74,7 +75,8 @@ TEST(Conservation, UniformFlowIsPreservedOnAPerturbedPeriodicMesh) {
   Mesh mesh = rectangle_mesh(1.0, 1.0, 10, 10);
   Problem p = gas_problem(std::move(mesh), 1.4, 0.2);
   p.regions.push_back(uniform_region(1.0, 1.0, 1.0, 0.5));
-  BoundaryCondition left = boundary("left", BoundaryKind::periodic), bottom = boundary("bottom", BoundaryKind::periodic);
+  BoundaryCondition left = boundary("left", BoundaryKind::periodic),
+                    bottom = boundary("bottom", BoundaryKind::periodic);
   left.partner = "right";
   bottom.partner = "top";
   p.boundaries = {left, bottom};

@@ -2,8 +2,8 @@
 // §16), first-order convergence against the exact solution, symmetry across y.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 

@@ -48,21 +48,21 @@ std::map<std::string, std::string> key_values(const std::string& text) {
 }
 
 class Install : public ::testing::Test {
-protected:
+ protected:
   void SetUp() override {
     if (STAGGER_SANITIZED) GTEST_SKIP() << "sanitizer build: the example would need the sanitizer flags too";
     // One directory per test: ctest runs the tests of this file in parallel.
-    root_ = fs::path(STAGGER_BINARY_DIR) / "install-test" /
-            ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    root_ =
+        fs::path(STAGGER_BINARY_DIR) / "install-test" / ::testing::UnitTest::GetInstance()->current_test_info()->name();
     std::error_code ignored;
     fs::remove_all(root_, ignored);
     fs::create_directories(root_);
     prefix_ = root_ / "prefix";
   }
   void install() {
-    ASSERT_RUNS(std::string(STAGGER_CMAKE_COMMAND) + " --install " + quote(STAGGER_BINARY_DIR) + " --prefix " +
-                    quote(prefix_),
-                root_ / "install.log");
+    ASSERT_RUNS(
+        std::string(STAGGER_CMAKE_COMMAND) + " --install " + quote(STAGGER_BINARY_DIR) + " --prefix " + quote(prefix_),
+        root_ / "install.log");
   }
   fs::path root_, prefix_;
 };
@@ -70,13 +70,11 @@ protected:
 TEST_F(Install, EmbeddingExampleBuildsAgainstTheInstalledPackageAndSolvesSod) {
   ASSERT_NO_FATAL_FAILURE(install());
   const fs::path build = root_ / "embed-build", out = root_ / "embed-out";
-  std::string configure = std::string(STAGGER_CMAKE_COMMAND) + " -S " +
-                          quote(fs::path(STAGGER_SOURCE_DIR) / "apps/examples/embed") + " -B " + quote(build) +
-                          " -G '" + STAGGER_CMAKE_GENERATOR + "' -DCMAKE_BUILD_TYPE=Release" +
-                          " -DCMAKE_PREFIX_PATH=" + quote(prefix_) + " -DCMAKE_CXX_COMPILER=" +
-                          quote(STAGGER_CXX_COMPILER);
-  if (std::string(STAGGER_MAKE_PROGRAM).size() > 0)
-    configure += " -DCMAKE_MAKE_PROGRAM=" + quote(STAGGER_MAKE_PROGRAM);
+  std::string configure =
+      std::string(STAGGER_CMAKE_COMMAND) + " -S " + quote(fs::path(STAGGER_SOURCE_DIR) / "apps/examples/embed") +
+      " -B " + quote(build) + " -G '" + STAGGER_CMAKE_GENERATOR + "' -DCMAKE_BUILD_TYPE=Release" +
+      " -DCMAKE_PREFIX_PATH=" + quote(prefix_) + " -DCMAKE_CXX_COMPILER=" + quote(STAGGER_CXX_COMPILER);
+  if (std::string(STAGGER_MAKE_PROGRAM).size() > 0) configure += " -DCMAKE_MAKE_PROGRAM=" + quote(STAGGER_MAKE_PROGRAM);
   ASSERT_RUNS(configure, root_ / "configure.log");
   // The package found is the installed one, not the build tree.
   const std::string cache = read_text(build / "CMakeCache.txt");
@@ -108,7 +106,8 @@ TEST_F(Install, PackageHoldsOnlyPublicHeadersAndNoBuildTreeTargets) {
     for (const auto& entry : fs::directory_iterator(fs::path(STAGGER_SOURCE_DIR) / dir))
       source_headers.insert(entry.path().filename().string());
   for (const auto& entry : fs::recursive_directory_iterator(prefix_ / "include"))
-    if (entry.is_regular_file()) installed_headers.insert(fs::relative(entry.path(), prefix_ / "include/stagger").string());
+    if (entry.is_regular_file())
+      installed_headers.insert(fs::relative(entry.path(), prefix_ / "include/stagger").string());
   EXPECT_EQ(installed_headers, source_headers);
 
   // Package files, and exported targets that reference nothing of the build tree.

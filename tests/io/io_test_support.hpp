@@ -3,6 +3,7 @@
 // reading, and a minimal JSON parser (enough to check summary.json is well formed).
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cctype>
 #include <cstdlib>
 #include <cstring>
@@ -13,7 +14,6 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <unistd.h>
 #include <utility>
 #include <vector>
 
@@ -51,10 +51,9 @@ inline Problem sod_problem(int nx, double t_end) {
 
 /// A fresh, empty directory for one test, removed afterwards.
 class ScratchDirectory {
-public:
+ public:
   explicit ScratchDirectory(const std::string& name)
-      : path_(std::filesystem::temp_directory_path() /
-              ("stagger_io_" + name + "_" + std::to_string(::getpid()))) {
+      : path_(std::filesystem::temp_directory_path() / ("stagger_io_" + name + "_" + std::to_string(::getpid()))) {
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
   }
@@ -67,7 +66,7 @@ public:
   const std::filesystem::path& path() const { return path_; }
   std::string file(const std::string& name) const { return (path_ / name).string(); }
 
-private:
+ private:
   std::filesystem::path path_;
 };
 
@@ -122,7 +121,7 @@ struct Json {
 
 /// Strict enough for our own output: throws std::runtime_error on malformed text.
 class JsonParser {
-public:
+ public:
   explicit JsonParser(std::string text) : text_(std::move(text)) {}
   Json parse() {
     Json value = parse_value();
@@ -131,7 +130,7 @@ public:
     return value;
   }
 
-private:
+ private:
   [[noreturn]] void fail(const std::string& what) const {
     throw std::runtime_error("JSON: " + what + " at offset " + std::to_string(position_));
   }
@@ -169,21 +168,38 @@ private:
       if (position_ >= text_.size()) fail("bad escape");
       const char escape = text_[position_++];
       switch (escape) {
-        case '"': out += '"'; break;
-        case '\\': out += '\\'; break;
-        case '/': out += '/'; break;
-        case 'n': out += '\n'; break;
-        case 't': out += '\t'; break;
-        case 'r': out += '\r'; break;
-        case 'b': out += '\b'; break;
-        case 'f': out += '\f'; break;
+        case '"':
+          out += '"';
+          break;
+        case '\\':
+          out += '\\';
+          break;
+        case '/':
+          out += '/';
+          break;
+        case 'n':
+          out += '\n';
+          break;
+        case 't':
+          out += '\t';
+          break;
+        case 'r':
+          out += '\r';
+          break;
+        case 'b':
+          out += '\b';
+          break;
+        case 'f':
+          out += '\f';
+          break;
         case 'u': {
           if (position_ + 4 > text_.size()) fail("bad \\u escape");
           out += static_cast<char>(std::stoi(text_.substr(position_, 4), nullptr, 16));
           position_ += 4;
           break;
         }
-        default: fail("bad escape");
+        default:
+          fail("bad escape");
       }
     }
   }
@@ -251,7 +267,9 @@ private:
   std::size_t position_ = 0;
 };
 
-inline Json parse_json_file(const std::string& path) { return JsonParser(read_text(path)).parse(); }
+inline Json parse_json_file(const std::string& path) {
+  return JsonParser(read_text(path)).parse();
+}
 
 /// (timestep, file) of every DataSet in a .pvd, in file order.
 inline std::vector<std::pair<double, std::string>> read_pvd(const std::string& path) {

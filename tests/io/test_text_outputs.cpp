@@ -137,9 +137,9 @@ TEST(Summary, JsonIsWellFormedAndCarriesTheContractKeys) {
   write_summary(path, simulation, summary);
 
   const io_test::Json json = io_test::parse_json_file(path);
-  for (const char* key : {"scene", "zones", "points", "cycles", "t_end", "time", "wall_seconds", "loop_seconds",
-                          "zone_cycles_per_second", "threads", "status", "energy", "momentum", "errors",
-                          "diagnostics"}) {
+  for (const char* key :
+       {"scene", "zones", "points", "cycles", "t_end", "time", "wall_seconds", "loop_seconds", "zone_cycles_per_second",
+        "threads", "status", "energy", "momentum", "errors", "diagnostics"}) {
     EXPECT_TRUE(json.has(key)) << key;
   }
   EXPECT_EQ(json["scene"].text, summary.scene);
@@ -149,8 +149,8 @@ TEST(Summary, JsonIsWellFormedAndCarriesTheContractKeys) {
   EXPECT_EQ(json["t_end"].number, 0.2);
   EXPECT_EQ(json["time"].number, simulation.time());
   EXPECT_DOUBLE_EQ(json["zone_cycles_per_second"].number, 10 * 4 / 0.5);
-  for (const char* key : {"initial", "final", "kinetic", "internal", "boundary_work", "source_work",
-                          "relative_error"}) {
+  for (const char* key :
+       {"initial", "final", "kinetic", "internal", "boundary_work", "source_work", "relative_error"}) {
     EXPECT_TRUE(json["energy"].has(key)) << key;
   }
   EXPECT_EQ(json["energy"]["final"].number, simulation.energy().total);

@@ -41,8 +41,8 @@ std::vector<double> run_sedov(int threads) {
   Simulation sim(std::move(p));
   for (int i = 0; i < 100; ++i) sim.step();
   std::vector<double> state;
-  for (auto field : {sim.x(), sim.y(), sim.velocity_x(), sim.velocity_y(), sim.specific_internal_energy(),
-                     sim.pressure()})
+  for (auto field :
+       {sim.x(), sim.y(), sim.velocity_x(), sim.velocity_y(), sim.specific_internal_energy(), sim.pressure()})
     state.insert(state.end(), field.begin(), field.end());
   state.push_back(sim.energy().relative_error);
   state.push_back(sim.dt());

@@ -80,9 +80,13 @@ void expect_honest_stop(bool check_corner_areas) {
   fs::remove_all(out);
 }
 
-TEST(HonestTangling, AFailedRunLeavesItsLastGoodStateMarked) { expect_honest_stop(true); }
+TEST(HonestTangling, AFailedRunLeavesItsLastGoodStateMarked) {
+  expect_honest_stop(true);
+}
 
-TEST(HonestTangling, CrossingZonesStopTheRunEvenWithTheCornerCheckOff) { expect_honest_stop(false); }
+TEST(HonestTangling, CrossingZonesStopTheRunEvenWithTheCornerCheckOff) {
+  expect_honest_stop(false);
+}
 
 TEST(HonestTangling, ACompletedRunHasNoLastGoodStateMark) {
   const fs::path out = fs::temp_directory_path() / ("stagger_tangle_ok_" + std::to_string(::getpid()));

@@ -14,7 +14,7 @@ namespace stagger {
 namespace {
 
 struct Rotation {
-  double max_error = 0;      // max |S - R S0 R^T| / |S0| over the turn
+  double max_error = 0;        // max |S - R S0 R^T| / |S0| over the turn
   double invariant_drift = 0;  // max |sqrt(S:S) - sqrt(S0:S0)| / sqrt(S0:S0)
 };
 
@@ -45,7 +45,9 @@ Rotation quarter_turn(int steps, bool objective) {
     velocity(v, vnx, vny);
     // Step 3: S^{n+1/2} from L(v^n) on x^n.
     PlanarGeometry::corner_gradients<4>(v, ax, ay);
-    Deviator half = advance_stress(objective, mu, s, s, PlanarGeometry::velocity_gradient(4, vnx, vny, ax, ay, PlanarGeometry::area<4>(v)), dt / 2);
+    Deviator half =
+        advance_stress(objective, mu, s, s,
+                       PlanarGeometry::velocity_gradient(4, vnx, vny, ax, ay, PlanarGeometry::area<4>(v)), dt / 2);
     radial_return(yield, mu, half);
     // Move rigidly; v_bar = (x^{n+1} - x^n)/dt, half geometry x^n + dt/2 v^n.
     ZoneVertices next = v, mid = v;
@@ -60,13 +62,15 @@ Rotation quarter_turn(int steps, bool objective) {
     }
     // Step 8: S^{n+1} from S^{n+1/2} and L(v_bar) on the half geometry.
     PlanarGeometry::corner_gradients<4>(mid, ax, ay);
-    s = advance_stress(objective, mu, s, half, PlanarGeometry::velocity_gradient(4, bx, by, ax, ay, PlanarGeometry::area<4>(mid)), dt);
+    s = advance_stress(objective, mu, s, half,
+                       PlanarGeometry::velocity_gradient(4, bx, by, ax, ay, PlanarGeometry::area<4>(mid)), dt);
     radial_return(yield, mu, s);
     v = next;
     angle += 2 * std::atan(a);
     // Exact: S0 rotated by the angle the points actually turned.
     const double c = std::cos(angle), t = std::sin(angle);
-    const Deviator exact{c * c * s0.xx + t * t * s0.yy - 2 * c * t * s0.xy, t * t * s0.xx + c * c * s0.yy + 2 * c * t * s0.xy,
+    const Deviator exact{c * c * s0.xx + t * t * s0.yy - 2 * c * t * s0.xy,
+                         t * t * s0.xx + c * c * s0.yy + 2 * c * t * s0.xy,
                          c * t * (s0.xx - s0.yy) + (c * c - t * t) * s0.xy};
     const Deviator diff{s.xx - exact.xx, s.yy - exact.yy, s.xy - exact.xy};
     out.max_error = std::max(out.max_error, norm(diff) / norm(s0));

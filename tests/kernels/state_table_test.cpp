@@ -66,9 +66,9 @@ TEST(StateTable, EverySceneHasExactlyTheArraysItNeeds) {
     }
   }
   // The scenes exercise every kind of presence, so the loop above checked each.
-  for (const Presence p : {Presence::always, Presence::strength, Presence::burn, Presence::edge_viscosity,
-                           Presence::half_step, Presence::external, Presence::momentum_source, Presence::energy_source,
-                           Presence::subzonal})
+  for (const Presence p :
+       {Presence::always, Presence::strength, Presence::burn, Presence::edge_viscosity, Presence::half_step,
+        Presence::external, Presence::momentum_source, Presence::energy_source, Presence::subzonal})
     EXPECT_TRUE(seen.count(p)) << "no example scene has presence " << static_cast<int>(p);
 }
 

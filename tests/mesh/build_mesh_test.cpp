@@ -72,15 +72,14 @@ TEST(BuildMesh, CornersKeepTheSoupOrderWhenAlreadyCounterClockwise) {
 
 TEST(BuildMesh, TwoQuadsSharingOnlyAPointAreRejected) {
   // Squares [0,1]^2 and [1,2]x[1,2] touch at point 2 = (1, 1) only.
-  const PolygonSoup soup = soup_of(
-      {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {2, 1}, {2, 2}, {1, 2}}, {{0, 1, 2, 3}, {2, 4, 5, 6}});
+  const PolygonSoup soup =
+      soup_of({{0, 0}, {1, 0}, {1, 1}, {0, 1}, {2, 1}, {2, 2}, {1, 2}}, {{0, 1, 2, 3}, {2, 4, 5, 6}});
   expect_error([&] { build_mesh(soup); }, {"non-manifold point 2", "(1, 1)", "test-soup"});
 }
 
 TEST(BuildMesh, EdgeSharedByThreeZonesIsRejected) {
   // Three triangles on the edge 0-1.
-  const PolygonSoup soup = soup_of({{0, 0}, {1, 0}, {0.5, 1}, {0.5, -1}, {0.5, 2}},
-                                   {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}});
+  const PolygonSoup soup = soup_of({{0, 0}, {1, 0}, {0.5, 1}, {0.5, -1}, {0.5, 2}}, {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}});
   expect_error([&] { build_mesh(soup); },
                {"non-manifold edge", "point 0 (0, 0)", "point 1 (1, 0)", "3 zones", "test-soup"});
 }
@@ -99,8 +98,7 @@ TEST(BuildMesh, ZeroAreaZoneIsRejected) {
 TEST(BuildMesh, DuplicatePointsAreRejected) {
   // Two unit squares side by side whose shared side has its own copies of the points.
   const PolygonSoup soup =
-      soup_of({{0, 0}, {1, 0}, {1, 1}, {0, 1}, {1, 0}, {2, 0}, {2, 1}, {1, 1 + 1e-15}},
-              {{0, 1, 2, 3}, {4, 5, 6, 7}});
+      soup_of({{0, 0}, {1, 0}, {1, 1}, {0, 1}, {1, 0}, {2, 0}, {2, 1}, {1, 1 + 1e-15}}, {{0, 1, 2, 3}, {4, 5, 6, 7}});
   expect_error([&] { build_mesh(soup); }, {"duplicate points", "point 1 (1, 0)", "point 4"});
 }
 
@@ -111,8 +109,7 @@ TEST(BuildMesh, EmptySoupIsRejected) {
 }
 
 TEST(BuildMesh, OrphanPointsAreDroppedAndCounted) {
-  const PolygonSoup soup =
-      soup_of({{9, 9}, {0, 0}, {1, 0}, {5, 5}, {1, 1}, {0, 1}, {7, 7}}, {{1, 2, 4, 5}});
+  const PolygonSoup soup = soup_of({{9, 9}, {0, 0}, {1, 0}, {5, 5}, {1, 1}, {0, 1}, {7, 7}}, {{1, 2, 4, 5}});
   MeshBuildReport report;
   const Mesh mesh = build_mesh(soup, {}, &report);
   expect_consistent(mesh);
@@ -174,17 +171,16 @@ TEST(BuildMesh, BoundaryLoopsAreReportedWithHoles) {
   soup.polygon_region.clear();
   for (std::size_t f = 0; f < full.num_polygons(); ++f) {
     if (f == 4) continue;
-    soup.add_polygon({full.polygon_points.begin() + full.polygon_begin[f],
-                      full.polygon_points.begin() + full.polygon_begin[f + 1]},
-                     0);
+    soup.add_polygon(
+        {full.polygon_points.begin() + full.polygon_begin[f], full.polygon_points.begin() + full.polygon_begin[f + 1]},
+        0);
   }
   MeshBuildReport report;
   const Mesh mesh = build_mesh(soup, {}, &report);
   expect_consistent(mesh);
   bool found = false;
   for (const auto& note : report.notes)
-    found = found || note.find("2 boundary loop(s), 16 boundary edges, 4 of them untagged") !=
-                         std::string::npos;
+    found = found || note.find("2 boundary loop(s), 16 boundary edges, 4 of them untagged") != std::string::npos;
   EXPECT_TRUE(found);
 }
 

@@ -29,7 +29,7 @@ Physical Surface("domain") = {1}; Physical Curve("wall") = {1, 2, 3, 4};
 )";
 
 class GeoSandbox : public ::testing::Test {
-protected:
+ protected:
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     // Under the build tree, one directory per test: parallel sessions never share it.
@@ -70,16 +70,17 @@ TEST_F(GeoSandbox, ScanFindsCommandsAndNamesFileAndLine) {
   // A number glued to a keyword is still the keyword (gmsh's lexer: "2" then "Exit").
   EXPECT_NE(meshgen::find_outside_command(write("glued.geo", "x = 2;2Exit;\n")).find(":1: 'Exit' ends the process"),
             std::string::npos);
-  for (const std::string command : {"Printf(\"a\") >> \"f.txt\";", "Save \"out.msh\";", "Merge \"a.py\";", "Merge StrCat(\"a\", \".step\");",
-                                    "Plugin(Smooth).Run;", "OnelabRun(\"client\");", "CreateDir \"d\";",
-                                    "System \"ls\";", "NonBlockingSystemCall \"ls\";", "Include StrCat(\"a\", \".geo\");"})
+  for (const std::string command :
+       {"Printf(\"a\") >> \"f.txt\";", "Save \"out.msh\";", "Merge \"a.py\";", "Merge StrCat(\"a\", \".step\");",
+        "Plugin(Smooth).Run;", "OnelabRun(\"client\");", "CreateDir \"d\";", "System \"ls\";",
+        "NonBlockingSystemCall \"ls\";", "Include StrCat(\"a\", \".geo\");"})
     EXPECT_NE(meshgen::find_outside_command(write("c.geo", std::string(kSquare) + command + "\n")), "") << command;
 }
 
 TEST_F(GeoSandbox, RefusedCommandIsOneLocatedErrorAndRunsNothing) {
   write("square.geo", kSquare);
-  const std::string geo = write("touch.geo", "Include \"square.geo\";\nSystemCall \"touch " +
-                                                 (directory_ / "ran").string() + "\";\n");
+  const std::string geo =
+      write("touch.geo", "Include \"square.geo\";\nSystemCall \"touch " + (directory_ / "ran").string() + "\";\n");
   expect_error([&] { meshgen::read_geo(geo); },
                {geo + ":2: 'SystemCall' runs a shell command", "mesh.allow_geo_commands = true", "arbitrary code"});
   EXPECT_FALSE(fs::exists(directory_ / "ran"));
@@ -94,10 +95,10 @@ TEST_F(GeoSandbox, SandboxStopsWhatTheScanMisses) {
   // Second line of defence: with the scan off (a test hook), the child's seccomp filter
   // still refuses to start a shell or to create a file.
   write("square.geo", kSquare);
-  const std::string shell = write("shell.geo", "Include \"square.geo\";\nSystemCall \"touch " +
-                                                   (directory_ / "ran").string() + "\";\n");
-  const std::string printf = write("printf.geo", "Include \"square.geo\";\nPrintf(\"x\") > \"" +
-                                                     (directory_ / "written.txt").string() + "\";\n");
+  const std::string shell =
+      write("shell.geo", "Include \"square.geo\";\nSystemCall \"touch " + (directory_ / "ran").string() + "\";\n");
+  const std::string printf = write(
+      "printf.geo", "Include \"square.geo\";\nPrintf(\"x\") > \"" + (directory_ / "written.txt").string() + "\";\n");
   ::setenv("STAGGER_GEO_SCAN", "0", 1);
   expect_error([&] { meshgen::read_geo(shell); }, {"shell.geo", "system call"});
   expect_error([&] { meshgen::read_geo(printf); }, {"printf.geo", "line 2", "Unable to open file"});
@@ -135,11 +136,13 @@ TEST_F(GeoSandbox, RunningOutOfMemoryIsAnError) {
   const std::string geo = write("big_list.geo", "Include \"square.geo\";\na[] = {1:3e8};\n");
   meshgen::GeoOptions options;
   options.memory_limit_mib = vm_kib / 1024 + 256;
-  expect_error([&] { meshgen::read_geo(geo, options); }, {"meshing " + geo, "ran out of memory", "mesh.gmsh_memory_limit"});
+  expect_error([&] { meshgen::read_geo(geo, options); },
+               {"meshing " + geo, "ran out of memory", "mesh.gmsh_memory_limit"});
   // Where the allocation is checked (operator new), the child says so itself.
   const std::string fine = write("fine.geo", "Include \"square.geo\";\nMesh.CharacteristicLengthMax = 3e-4;\n");
   options.memory_limit_mib = vm_kib / 1024 + 32;
-  expect_error([&] { meshgen::read_geo(fine, options); }, {"meshing " + fine, "ran out of memory", "mesh.gmsh_memory_limit"});
+  expect_error([&] { meshgen::read_geo(fine, options); },
+               {"meshing " + fine, "ran out of memory", "mesh.gmsh_memory_limit"});
 }
 
 TEST_F(GeoSandbox, GmshCrashAndExitAreErrorsNamingTheFile) {
@@ -200,8 +203,9 @@ tags = ["wall"]
 type = "wall"
 )");
   const fs::path out = directory_ / "out";
-  const std::string command = std::string(STAGGER_BINARY_DIR) + "/bin/stagger run " + scene + " --threads 2 --quiet --out " +
-                              out.string() + " >" + (directory_ / "log.txt").string() + " 2>&1";
+  const std::string command = std::string(STAGGER_BINARY_DIR) + "/bin/stagger run " + scene +
+                              " --threads 2 --quiet --out " + out.string() + " >" + (directory_ / "log.txt").string() +
+                              " 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0);
   std::ifstream in(out / "summary.json");
   std::stringstream text;
@@ -359,11 +363,17 @@ TEST(Overlaps, SeparatePiecesOnTopOfEachOtherAreRejected) {
     MeshBuildOptions options;
     options.check_topology = topology;
     expect_error([&] { build_mesh(squares({{0, 0, 1}, {0.5, 0.5, 1}}), options); }, {"zones overlap", "crosses"});
-    expect_error([&] { build_mesh(squares({{0, 0, 3}, {1, 1, 1}}), options); },
-                 {"zones overlap", "lies inside zone 0"});
+    expect_error(
+        [&] {
+          build_mesh(squares({{0, 0, 3}, {1, 1, 1}}), options);
+        },
+        {"zones overlap", "lies inside zone 0"});
     // A corner on another zone's edge: the zones do not connect (a hanging node).
-    expect_error([&] { build_mesh(squares({{0, 0, 1}, {1, 0.5, 1}}), options); },
-                 {"lies on edge", "not a corner of that zone"});
+    expect_error(
+        [&] {
+          build_mesh(squares({{0, 0, 1}, {1, 0.5, 1}}), options);
+        },
+        {"lies on edge", "not a corner of that zone"});
     // Apart, or sharing an edge properly, is fine.
     EXPECT_EQ(build_mesh(squares({{0, 0, 1}, {2, 0, 1}}), options).num_zones(), 2);
   }

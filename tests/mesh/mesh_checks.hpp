@@ -21,8 +21,7 @@ inline void expect_consistent(const Mesh& m) {
   ASSERT_EQ(m.zone_region.size(), static_cast<std::size_t>(nz));
   for (Index z = 0; z < nz; ++z) {
     ASSERT_GE(m.zone_corner_begin[z + 1] - m.zone_corner_begin[z], 3) << "zone " << z;
-    for (Index c = m.zone_corner_begin[z]; c < m.zone_corner_begin[z + 1]; ++c)
-      ASSERT_EQ(m.corner_zone[c], z);
+    for (Index c = m.zone_corner_begin[z]; c < m.zone_corner_begin[z + 1]; ++c) ASSERT_EQ(m.corner_zone[c], z);
     EXPECT_GT(zone_area(m, z), 0) << "zone " << z << " is not counter-clockwise";
   }
   // Point -> corners CSR: every corner once, under its own point, ascending.
@@ -45,20 +44,17 @@ inline void expect_consistent(const Mesh& m) {
   ASSERT_EQ(m.region_zone_begin.size(), m.region_names.size() + 1);
   ASSERT_EQ(m.region_zone_begin.back(), nz);
   for (Index r = 0; r < m.num_regions(); ++r)
-    for (Index z = m.region_zone_begin[r]; z < m.region_zone_begin[r + 1]; ++z)
-      ASSERT_EQ(m.zone_region[z], r);
+    for (Index z = m.region_zone_begin[r]; z < m.region_zone_begin[r + 1]; ++z) ASSERT_EQ(m.zone_region[z], r);
   // Directed zone edges: each tagged edge is one of them (CCW), tag points match edges.
   std::set<std::pair<Index, Index>> directed;
   for (Index z = 0; z < nz; ++z) {
     const Index b = m.zone_corner_begin[z], e = m.zone_corner_begin[z + 1];
-    for (Index c = b; c < e; ++c)
-      directed.insert({m.corner_point[c], m.corner_point[c + 1 == e ? b : c + 1]});
+    for (Index c = b; c < e; ++c) directed.insert({m.corner_point[c], m.corner_point[c + 1 == e ? b : c + 1]});
   }
   for (const BoundaryTag& tag : m.tags) {
     std::vector<Index> points;
     for (const auto& edge : tag.edges) {
-      EXPECT_TRUE(directed.contains({edge[0], edge[1]}))
-          << "tag " << tag.name << " edge " << edge[0] << "-" << edge[1];
+      EXPECT_TRUE(directed.contains({edge[0], edge[1]})) << "tag " << tag.name << " edge " << edge[0] << "-" << edge[1];
       points.push_back(edge[0]);
       points.push_back(edge[1]);
     }
@@ -82,8 +78,7 @@ void expect_error(F&& f, std::initializer_list<std::string> parts) {
     ADD_FAILURE() << "expected stagger::Error";
   } catch (const Error& e) {
     const std::string what = e.what();
-    for (const auto& part : parts)
-      EXPECT_NE(what.find(part), std::string::npos) << "'" << part << "' not in: " << what;
+    for (const auto& part : parts) EXPECT_NE(what.find(part), std::string::npos) << "'" << part << "' not in: " << what;
   }
 }
 

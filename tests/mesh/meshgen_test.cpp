@@ -63,8 +63,7 @@ TEST(Meshgen, ParameterOverrideWorksLikeSetNumber) {
   options.parameters = {{"n_theta", 8}, {"n_r", 2}, {"ri", 0.5}, {"ro", 1.0}};
   const Mesh small = build_mesh(meshgen::read_geo(geometry("quarter_shell.geo"), options));
   EXPECT_EQ(small.num_zones(), 16);
-  for (Index p : tag(small, "inner").points)
-    EXPECT_NEAR(std::hypot(small.x[p], small.y[p]), 0.5, 1e-14);
+  for (Index p : tag(small, "inner").points) EXPECT_NEAR(std::hypot(small.x[p], small.y[p]), 0.5, 1e-14);
   // Overrides do not leak into the next read of the same file.
   EXPECT_EQ(build_mesh(meshgen::read_geo(geometry("quarter_shell.geo"))).num_zones(), 320);
 }
@@ -86,8 +85,7 @@ TEST(Meshgen, UnknownParameterIsAnError) {
   expect_error([&] { meshgen::read_geo(geometry("quarter_shell.geo"), options); },
                {"quarter_shell.geo", "unknown parameter 'n_thetta'"});
   options.parameters = {{"x;Point(9)", 1}};
-  expect_error([&] { meshgen::read_geo(geometry("quarter_shell.geo"), options); },
-               {"not a valid .geo identifier"});
+  expect_error([&] { meshgen::read_geo(geometry("quarter_shell.geo"), options); }, {"not a valid .geo identifier"});
 }
 
 TEST(Meshgen, ClockwiseGeoIsRepaired) {
@@ -116,8 +114,7 @@ TEST(Meshgen, LeftoverTrianglesFollowThePolicy) {
   EXPECT_NEAR(testing::total_area(mixed), 0.5, 1e-13);
 
   options.triangles = meshgen::TrianglePolicy::subdivide;
-  const Mesh quads = build_mesh(meshgen::read_geo(geometry("triangles_left.geo"), options),
-                                {.quads_only = true});
+  const Mesh quads = build_mesh(meshgen::read_geo(geometry("triangles_left.geo"), options), {.quads_only = true});
   expect_consistent(quads);
   EXPECT_TRUE(quads.all_quads());
   EXPECT_NEAR(testing::total_area(quads), 0.5, 1e-13);
@@ -143,8 +140,7 @@ TEST(Meshgen, PlateWithHolesIsUnstructuredWithTwoTagsAndFourLoops) {
   EXPECT_GT(tag(m, "holes").edges.size(), 0U);
   EXPECT_GT(mesh_quality(m).quads, 500);
   bool loops = false;
-  for (const auto& note : report.notes)
-    loops = loops || note.find("4 boundary loop(s)") != std::string::npos;
+  for (const auto& note : report.notes) loops = loops || note.find("4 boundary loop(s)") != std::string::npos;
   EXPECT_TRUE(loops);
   // Plate minus the holes, up to the polygonal approximation of the circles.
   const double pi = std::numbers::pi;

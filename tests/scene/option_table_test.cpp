@@ -111,7 +111,8 @@ double other_value(const stagger::Option<Options>& option, double current) {
   // dt_min: a floor above the first CFL step is refused at load (the step would collapse),
   // so try a small floor first.
   const double small = std::string(option.key) == "dt_min" ? 1e-9 : current + 1;
-  for (double candidate : {small, current + 1, current * 0.5, current - 1, 0.5 * (option.range.low + option.range.high)}) {
+  for (double candidate :
+       {small, current + 1, current * 0.5, current - 1, 0.5 * (option.range.low + option.range.high)}) {
     if (option.type == stagger::OptionType::integer) candidate = std::round(candidate);
     if (candidate != current && option.check(candidate).empty()) return candidate;
   }

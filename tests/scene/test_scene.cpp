@@ -40,7 +40,7 @@ type = "wall"
 )";
 
 class SceneFile : public ::testing::Test {
-protected:
+ protected:
   void SetUp() override {
     directory_ = fs::temp_directory_path() /
                  ("stagger_scene_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
@@ -62,7 +62,8 @@ protected:
     return text.replace(position, from.size(), to);
   }
   // The message of the Error that loading `text` throws ("" if none).
-  std::string error_of(const std::string& text, const std::vector<std::pair<std::string, std::string>>& overrides = {}) {
+  std::string error_of(const std::string& text,
+                       const std::vector<std::pair<std::string, std::string>>& overrides = {}) {
     const std::string path = write(text);
     try {
       stagger::load_scene(path, overrides);
@@ -223,9 +224,11 @@ TEST_F(SceneFile, RefinedListsWhichCountsRefineMultiplies) {
 }
 
 TEST_F(SceneFile, SetCreatesMissingSectionsAndParsesValues) {
-  const stagger::Scene scene = stagger::load_scene(
-      write(base_scene), {{"numerics.cfl", "0.3"}, {"numerics.viscosity", "edge"}, {"output.dumps", "false"},
-                          {"region[0].density", "\"2 + x\""}, {"time.end", "0.05"}});
+  const stagger::Scene scene = stagger::load_scene(write(base_scene), {{"numerics.cfl", "0.3"},
+                                                                       {"numerics.viscosity", "edge"},
+                                                                       {"output.dumps", "false"},
+                                                                       {"region[0].density", "\"2 + x\""},
+                                                                       {"time.end", "0.05"}});
   EXPECT_DOUBLE_EQ(scene.problem.options.cfl, 0.3);
   EXPECT_EQ(scene.problem.options.viscosity, stagger::Viscosity::edge);
   EXPECT_FALSE(scene.control.dumps);
@@ -239,7 +242,8 @@ TEST_F(SceneFile, SetWithAnUnknownPathIsAnErrorNamingTheOverride) {
   EXPECT_CONTAINS(error_of(base_scene, {{"nonsense.key", "1"}}), "--set nonsense.key=1: key 'nonsense': unknown key");
   EXPECT_CONTAINS(error_of(base_scene, {{"region[3].density", "1"}}), "'region' has 1 entries");
   EXPECT_CONTAINS(error_of(base_scene, {{"region.density", "1"}}), "pick one entry, e.g. region[0].density");
-  EXPECT_CONTAINS(error_of(base_scene, {{"numerics.cfl", "2"}}), "--set numerics.cfl=2: key 'numerics.cfl': must be in");
+  EXPECT_CONTAINS(error_of(base_scene, {{"numerics.cfl", "2"}}),
+                  "--set numerics.cfl=2: key 'numerics.cfl': must be in");
 }
 
 TEST_F(SceneFile, ExpressionsAreEvaluatedWithPiAndTernary) {
@@ -354,10 +358,10 @@ TEST_F(SceneFile, UnknownVerificationReferenceIsAnError) {
 }
 
 TEST_F(SceneFile, ShockTubeReferenceIsInstalled) {
-  const stagger::Scene scene = stagger::load_scene(write(
-      std::string(base_scene) +
-      "[verification]\nreference = \"shock_tube\"\nleft = { density = 1.0, pressure = 1.0 }\n"
-      "right = { density = 0.125, pressure = 0.1 }\nx0 = 0.5\n"));
+  const stagger::Scene scene =
+      stagger::load_scene(write(std::string(base_scene) +
+                                "[verification]\nreference = \"shock_tube\"\nleft = { density = 1.0, pressure = 1.0 }\n"
+                                "right = { density = 0.125, pressure = 0.1 }\nx0 = 0.5\n"));
   EXPECT_TRUE(static_cast<bool>(scene.control.reference));
 }
 
@@ -382,8 +386,8 @@ TEST(Scenes, EveryExampleSceneLoadsAndValidates) {
     EXPECT_GT(scene.problem.mesh.num_zones(), 0);
     // The verification problems carry their reference; demonstrations (he_plate,
     // elastic_wave) may have none.
-    const std::set<std::string> verification = {"sod",   "noh",      "noh_polar", "sedov",    "saltzman",
-                                                "smooth", "piston",   "be_shell",  "accuracy", "detonation"};
+    const std::set<std::string> verification = {"sod",    "noh",    "noh_polar", "sedov",    "saltzman",
+                                                "smooth", "piston", "be_shell",  "accuracy", "detonation"};
     if (verification.count(entry.path().stem().string())) {
       EXPECT_TRUE(static_cast<bool>(scene.control.reference)) << "a verification scene has a [verification]";
     }
@@ -391,14 +395,14 @@ TEST(Scenes, EveryExampleSceneLoadsAndValidates) {
     const stagger::Scene finer = stagger::load_scene(entry.path().string(), {{"mesh.refine", "2"}});
     EXPECT_GT(finer.problem.mesh.num_zones(), scene.problem.mesh.num_zones());
   }
-  for (const char* name : {"sod", "noh", "noh_polar", "sedov", "saltzman", "smooth", "piston", "be_shell", "accuracy",
-                           "detonation"})
+  for (const char* name :
+       {"sod", "noh", "noh_polar", "sedov", "saltzman", "smooth", "piston", "be_shell", "accuracy", "detonation"})
     EXPECT_EQ(names.count(name), 1u) << name;
 }
 
 TEST(Scenes, SodHasTheVerificationSetUp) {
-  const stagger::Scene scene = stagger::load_scene(std::string(STAGGER_SOURCE_DIR) + "/apps/scenes/sod.toml",
-                                                   {{"mesh.refine", "2"}});
+  const stagger::Scene scene =
+      stagger::load_scene(std::string(STAGGER_SOURCE_DIR) + "/apps/scenes/sod.toml", {{"mesh.refine", "2"}});
   EXPECT_EQ(scene.problem.mesh.num_zones(), 200 * 5);
   EXPECT_DOUBLE_EQ(scene.problem.t_end, 0.2);
   EXPECT_DOUBLE_EQ(scene.problem.options.hourglass_coefficient, 0.0);

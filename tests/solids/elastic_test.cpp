@@ -19,7 +19,9 @@
 namespace stagger {
 namespace {
 
-std::string scene_path(const char* name) { return std::string(STAGGER_SOURCE_DIR) + "/apps/scenes/" + name; }
+std::string scene_path(const char* name) {
+  return std::string(STAGGER_SOURCE_DIR) + "/apps/scenes/" + name;
+}
 
 double value_of(const NamedValues& values, const std::string& name) {
   for (const auto& [key, value] : values)
@@ -37,7 +39,8 @@ struct AccuracyRun {
 };
 
 AccuracyRun run_accuracy(int n) {
-  Scene scene = load_scene(scene_path("accuracy.toml"), {{"mesh.nx", std::to_string(n)}, {"mesh.ny", std::to_string(n)}});
+  Scene scene =
+      load_scene(scene_path("accuracy.toml"), {{"mesh.nx", std::to_string(n)}, {"mesh.ny", std::to_string(n)}});
   const Reference reference = scene.control.reference;
   Simulation sim(std::move(scene.problem));
   sim.advance_to(1e-4);
@@ -62,8 +65,8 @@ TEST(AccuracyTest, DensityAndStressConvergeAtSecondOrder) {
   for (int n : {20, 40, 80}) {
     runs.push_back(run_accuracy(n));
     const AccuracyRun& r = runs.back();
-    std::printf("[ numbers  ] accuracy N = %d: cycles %ld L2 density %.4e S_xx %.4e S_yy %.4e S_xy %.4e audit %.2e\n", r.n,
-                r.cycles, r.density, r.sxx, r.syy, r.sxy, r.audit);
+    std::printf("[ numbers  ] accuracy N = %d: cycles %ld L2 density %.4e S_xx %.4e S_yy %.4e S_xy %.4e audit %.2e\n",
+                r.n, r.cycles, r.density, r.sxx, r.syy, r.sxy, r.audit);
     EXPECT_LT(std::abs(r.audit), 1e-12);
   }
   auto order = [](double coarse, double fine) { return std::log2(coarse / fine); };
@@ -102,7 +105,8 @@ double standing_wave_period(int nx, bool shear, double t_end) {
   std::vector<double> crossings;
   sim.set_observer([&](const Simulation& s) {
     const double now = projection(s);
-    if ((previous > 0) != (now > 0)) crossings.push_back(t_previous + (s.time() - t_previous) * previous / (previous - now));
+    if ((previous > 0) != (now > 0))
+      crossings.push_back(t_previous + (s.time() - t_previous) * previous / (previous - now));
     previous = now;
     t_previous = s.time();
   });
@@ -125,8 +129,9 @@ TEST(ElasticWaves, LongitudinalWaveTravelsAtTheElasticSpeedWithSecondOrderError)
   for (int nx : {25, 50, 100}) {
     const double period = standing_wave_period(nx, false, 2.1 / c_l);
     error.push_back(1.0 / period / c_l - 1.0);
-    std::printf("[ numbers  ] longitudinal wave, %d zones per wavelength: speed %.3f m/s (C_L %.3f), relative error %.3e\n",
-                nx, 1.0 / period, c_l, error.back());
+    std::printf(
+        "[ numbers  ] longitudinal wave, %d zones per wavelength: speed %.3f m/s (C_L %.3f), relative error %.3e\n", nx,
+        1.0 / period, c_l, error.back());
   }
   EXPECT_LT(std::abs(error[2]), 1e-3);
   EXPECT_GT(std::abs(error[1] / error[2]), 3.0);  // second order: 4 expected
@@ -139,8 +144,9 @@ TEST(ElasticWaves, ShearWaveTravelsAtTheShearSpeedWithSecondOrderError) {
   for (int nx : {25, 50, 100}) {
     const double period = standing_wave_period(nx, true, 2.1 / c_s);
     error.push_back(1.0 / period / c_s - 1.0);
-    std::printf("[ numbers  ] shear wave, %d zones per wavelength: speed %.3f m/s (sqrt(mu/rho) %.3f), relative error %.3e\n",
-                nx, 1.0 / period, c_s, error.back());
+    std::printf(
+        "[ numbers  ] shear wave, %d zones per wavelength: speed %.3f m/s (sqrt(mu/rho) %.3f), relative error %.3e\n",
+        nx, 1.0 / period, c_s, error.back());
   }
   EXPECT_LT(std::abs(error[2]), 1e-3);
   EXPECT_GT(std::abs(error[1] / error[2]), 3.0);
@@ -169,10 +175,10 @@ Sources centripetal_sources(double rho, double omega, double dt) {
 }
 
 struct RotationResult {
-  double stress_error = 0;      // max over zones and components |S - R S0 R^T| / |S0|
-  double invariant_drift = 0;   // max over zones |sqrt(S:S) - sqrt(S0:S0)| / sqrt(S0:S0)
+  double stress_error = 0;     // max over zones and components |S - R S0 R^T| / |S0|
+  double invariant_drift = 0;  // max over zones |sqrt(S:S) - sqrt(S0:S0)| / sqrt(S0:S0)
   double angle = 0;
-  double radius_error = 0;      // max over points of | |x_p| - |x_p^0| | (m)
+  double radius_error = 0;  // max over points of | |x_p| - |x_p^0| | (m)
   double audit = 0;
 };
 
@@ -214,8 +220,9 @@ RotationResult rotate_block(int steps, StressUpdate update) {
   result.audit = sim.energy().relative_error;
   // The mesh turned rigidly: every point at its initial distance from the centre.
   for (Index q = 0; q < sim.mesh().num_points(); ++q)
-    result.radius_error = std::max(result.radius_error, std::abs(std::hypot(sim.x()[q], sim.y()[q]) -
-                                                                 std::hypot(sim.problem().mesh.x[q], sim.problem().mesh.y[q])));
+    result.radius_error = std::max(
+        result.radius_error,
+        std::abs(std::hypot(sim.x()[q], sim.y()[q]) - std::hypot(sim.problem().mesh.x[q], sim.problem().mesh.y[q])));
   const double c = std::cos(result.angle), s = std::sin(result.angle);
   // R S0 R^T for S0 = diag(s0, 0) in the plane (S_zz = -s0 unchanged by an in-plane turn).
   const double exx = s0 * c * c, eyy = s0 * s * s, exy = s0 * c * s;
@@ -243,9 +250,10 @@ RotationResult rotate_block(int steps, StressUpdate update) {
 TEST(RigidRotation, ObjectiveUpdateKeepsStressInvariantsToRoundOff) {
   const RotationResult a = rotate_block(25, StressUpdate::objective), b = rotate_block(100, StressUpdate::objective);
   for (const RotationResult* r : {&a, &b}) {
-    std::printf("[ numbers  ] objective, %d steps per quarter turn (mesh angle %.9f, radius error %.1e m, audit %.1e): "
-                "max |S - R S0 R^T| / |S0| %.3e, invariant drift %.2e\n",
-                r == &a ? 25 : 100, r->angle, r->radius_error, r->audit, r->stress_error, r->invariant_drift);
+    std::printf(
+        "[ numbers  ] objective, %d steps per quarter turn (mesh angle %.9f, radius error %.1e m, audit %.1e): "
+        "max |S - R S0 R^T| / |S0| %.3e, invariant drift %.2e\n",
+        r == &a ? 25 : 100, r->angle, r->radius_error, r->audit, r->stress_error, r->invariant_drift);
     EXPECT_LT(r->radius_error, 1e-13);  // the kinematics are discretely rigid
     EXPECT_LT(std::abs(r->audit), 1e-13);
     EXPECT_LT(r->invariant_drift, 1e-10);

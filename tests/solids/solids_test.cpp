@@ -49,15 +49,18 @@ TEST(ElasticPlasticPiston, BothWavesWithinTwoPercentAndEnergyAtRoundOff) {
   p.regions.push_back(r);
   BoundaryCondition piston = bc("left", BoundaryKind::velocity);
   piston.velocity_x = constant_in_time(20.0);
-  p.boundaries = {piston, bc("right", BoundaryKind::wall), bc("bottom", BoundaryKind::wall), bc("top", BoundaryKind::wall)};
+  p.boundaries = {piston, bc("right", BoundaryKind::wall), bc("bottom", BoundaryKind::wall),
+                  bc("top", BoundaryKind::wall)};
   p.options.cfl = 0.1;
   p.t_end = 150e-6;
   Simulation sim(std::move(p));
   sim.advance_to(150e-6);
   NamedValues errors, diagnostics;
   piston_reference()(sim, errors, diagnostics);
-  const double elastic = lookup(diagnostics, "elastic_front"), elastic_exact = lookup(diagnostics, "elastic_front_exact");
-  const double plastic = lookup(diagnostics, "plastic_front"), plastic_exact = lookup(diagnostics, "plastic_front_exact");
+  const double elastic = lookup(diagnostics, "elastic_front"),
+               elastic_exact = lookup(diagnostics, "elastic_front_exact");
+  const double plastic = lookup(diagnostics, "plastic_front"),
+               plastic_exact = lookup(diagnostics, "plastic_front_exact");
   std::printf("piston 100x5: cycles %ld elastic %.4f (exact %.4f) plastic %.4f (exact %.4f) audit %.2e\n", sim.cycle(),
               elastic, elastic_exact, plastic, plastic_exact, sim.energy().relative_error);
   EXPECT_NEAR(elastic / elastic_exact, 1.0, 0.02);
@@ -118,7 +121,9 @@ TEST(BerylliumShell, StopsWithinAMillimetreOfHowellBallAndStaysSymmetric) {
 
 namespace stagger {
 namespace {
-std::string scene_path(const char* name) { return std::string(STAGGER_SOURCE_DIR) + "/apps/scenes/" + name; }
+std::string scene_path(const char* name) {
+  return std::string(STAGGER_SOURCE_DIR) + "/apps/scenes/" + name;
+}
 }  // namespace
 
 // apps/scenes/be_shell.toml as shipped: the gmsh quarter shell (geometries/quarter_shell.geo),
@@ -137,9 +142,10 @@ TEST(BerylliumShell, GmshSceneStopsWithinAMillimetreAndStaysSymmetricToRoundOff)
   const double inner = lookup(diagnostics, "inner_radius"), exact = lookup(diagnostics, "inner_radius_exact");
   const double outer = lookup(diagnostics, "outer_radius"), outer_exact = lookup(diagnostics, "outer_radius_exact");
   const double asym = lookup(diagnostics, "asymmetry");
-  std::printf("[ numbers  ] be_shell.toml 20x16 (gmsh): cycles %ld inner %.5f mm (exact %.5f) outer %.5f mm (exact %.5f) "
-              "asymmetry %.2e audit %.2e\n",
-              sim.cycle(), inner * 1e3, exact * 1e3, outer * 1e3, outer_exact * 1e3, asym, sim.energy().relative_error);
+  std::printf(
+      "[ numbers  ] be_shell.toml 20x16 (gmsh): cycles %ld inner %.5f mm (exact %.5f) outer %.5f mm (exact %.5f) "
+      "asymmetry %.2e audit %.2e\n",
+      sim.cycle(), inner * 1e3, exact * 1e3, outer * 1e3, outer_exact * 1e3, asym, sim.energy().relative_error);
   EXPECT_NEAR(inner, exact, 1e-3);
   EXPECT_NEAR(outer, outer_exact, 1e-3);
   EXPECT_LT(asym, 1e-12);
@@ -175,9 +181,10 @@ TEST(ElasticPlasticPiston, PlasticPlateauStressConvergesToTheYieldValue) {
       ++plateau;
     }
     mean_deviation.push_back(deviation / area);
-    std::printf("[ numbers  ] piston %dx5: plateau S_xx in [%.2f, %.2f] MPa, mean |S_xx + 60 MPa| %.3f MPa, %d of %d "
-                "zones more than 1 MPa off; L1_deviatoric_stress_xx %.3e\n",
-                nx, lo / 1e6, hi / 1e6, deviation / area / 1e6, off, plateau, lookup(errors, "L1_deviatoric_stress_xx"));
+    std::printf(
+        "[ numbers  ] piston %dx5: plateau S_xx in [%.2f, %.2f] MPa, mean |S_xx + 60 MPa| %.3f MPa, %d of %d "
+        "zones more than 1 MPa off; L1_deviatoric_stress_xx %.3e\n",
+        nx, lo / 1e6, hi / 1e6, deviation / area / 1e6, off, plateau, lookup(errors, "L1_deviatoric_stress_xx"));
     EXPECT_GE(lo, -60e6 * (1 + 1e-9));  // radial return: never beyond the yield surface
   }
   EXPECT_LT(mean_deviation[1], 0.5 * mean_deviation[0]);

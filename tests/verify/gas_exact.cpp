@@ -16,8 +16,8 @@ using stagger::GasState;
 double integrate(const std::function<double(double)>& f, double a, double b, int n) {
   static const double nodes[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
                                   0.9061798459386640};
-  static const double weights[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
-                                    0.4786286704993665, 0.2369268850561891};
+  static const double weights[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
+                                    0.2369268850561891};
   double sum = 0;
   const double h = (b - a) / n;
   for (int k = 0; k < n; ++k) {
@@ -113,7 +113,9 @@ TEST(NohSolution, SatisfiesRankineHugoniotAtTheShock) {
   const double mass1 = ahead.density * w1, mass2 = behind.density * w2;
   EXPECT_NEAR(mass1, mass2, 1e-10);
   EXPECT_NEAR(mass1 * w1 + ahead.pressure, mass2 * w2 + behind.pressure, 1e-10);
-  auto enthalpy = [&](const GasState& s, double w) { return gamma / (gamma - 1.0) * s.pressure / s.density + 0.5 * w * w; };
+  auto enthalpy = [&](const GasState& s, double w) {
+    return gamma / (gamma - 1.0) * s.pressure / s.density + 0.5 * w * w;
+  };
   EXPECT_NEAR(enthalpy(ahead, w1), enthalpy(behind, w2), 1e-10);
   // Pre-shock compression by convergence: rho0 (1 + t/r) in 2D.
   EXPECT_NEAR(noh.state(0.5, t).density, 1.0 + 0.6 / 0.5, 1e-14);
@@ -138,14 +140,13 @@ TEST(SedovSolution, ProfileCarriesTheBlastEnergyAndPostShockState) {
   const double total = integrate(
       [&](double r) {
         const GasState s = sedov.state(r, t);
-        return (0.5 * s.density * s.velocity * s.velocity + s.pressure / (gamma - 1.0)) * 2.0 *
-               std::numbers::pi * r;
+        return (0.5 * s.density * s.velocity * s.velocity + s.pressure / (gamma - 1.0)) * 2.0 * std::numbers::pi * r;
       },
       0.0, radius, 400);
   EXPECT_NEAR(total / energy, 1.0, 1e-8);
   // Mass inside the shock = mass swept up.
-  const double mass = integrate([&](double r) { return sedov.state(r, t).density * 2.0 * std::numbers::pi * r; },
-                                0.0, radius, 400);
+  const double mass =
+      integrate([&](double r) { return sedov.state(r, t).density * 2.0 * std::numbers::pi * r; }, 0.0, radius, 400);
   EXPECT_NEAR(mass / (rho0 * std::numbers::pi * radius * radius), 1.0, 1e-8);
   // Strong-shock jump just behind the front.
   const double speed = 0.5 * radius / t;
@@ -170,8 +171,8 @@ TEST(SedovSolution, ProfileSatisfiesTheEulerEquations) {
     auto d = [&](double plus, double minus) { return (plus - minus) / (2 * h); };
     const double continuity = d(tp.density, tm.density) + c.velocity * d(rp.density, rm.density) +
                               c.density * (d(rp.velocity, rm.velocity) + c.velocity / r);
-    const double momentum =
-        d(tp.velocity, tm.velocity) + c.velocity * d(rp.velocity, rm.velocity) + d(rp.pressure, rm.pressure) / c.density;
+    const double momentum = d(tp.velocity, tm.velocity) + c.velocity * d(rp.velocity, rm.velocity) +
+                            d(rp.pressure, rm.pressure) / c.density;
     auto entropy = [&](const GasState& q) { return std::log(q.pressure) - gamma * std::log(q.density); };
     const double adiabatic = d(entropy(tp), entropy(tm)) + c.velocity * d(entropy(rp), entropy(rm));
     const double scale = c.density / t;  // rho / t sets the size of each term
@@ -202,13 +203,16 @@ TEST(TaylorGreen, ExactFieldsSatisfyTheEquationsWithTheEnergySource) {
       const auto vyp = stagger::taylor_green_velocity(x, y + h), vym = stagger::taylor_green_velocity(x, y - h);
       worst_div = std::max(worst_div, std::abs((vxp[0] - vxm[0] + vyp[1] - vym[1]) / (2 * h)));
       for (int i = 0; i < 2; ++i) {
-        const double dpdx = (stagger::taylor_green_pressure(x + h, y) - stagger::taylor_green_pressure(x - h, y)) / (2 * h);
-        const double dpdy = (stagger::taylor_green_pressure(x, y + h) - stagger::taylor_green_pressure(x, y - h)) / (2 * h);
-        const double residual = v[0] * (vxp[i] - vxm[i]) / (2 * h) + v[1] * (vyp[i] - vym[i]) / (2 * h) +
-                                (i == 0 ? dpdx : dpdy);
+        const double dpdx =
+            (stagger::taylor_green_pressure(x + h, y) - stagger::taylor_green_pressure(x - h, y)) / (2 * h);
+        const double dpdy =
+            (stagger::taylor_green_pressure(x, y + h) - stagger::taylor_green_pressure(x, y - h)) / (2 * h);
+        const double residual =
+            v[0] * (vxp[i] - vxm[i]) / (2 * h) + v[1] * (vyp[i] - vym[i]) / (2 * h) + (i == 0 ? dpdx : dpdy);
         worst_momentum = std::max(worst_momentum, std::abs(residual));
       }
-      const double advection = v[0] * (e(x + h, y) - e(x - h, y)) / (2 * h) + v[1] * (e(x, y + h) - e(x, y - h)) / (2 * h);
+      const double advection =
+          v[0] * (e(x + h, y) - e(x - h, y)) / (2 * h) + v[1] * (e(x, y + h) - e(x, y - h)) / (2 * h);
       const double source = sources.energy(x, y, 0.3);
       worst_energy = std::max(worst_energy, std::abs(advection - source));
       largest_source = std::max(largest_source, std::abs(source));

@@ -44,16 +44,15 @@ TEST(Norms, AreaWeightedMeansMatchHandValues) {
   EXPECT_EQ(errors[2].first, "Linf_density");
   EXPECT_DOUBLE_EQ(errors[2].second, 5.0);  // Linf ignores the weights
   EXPECT_THROW(stagger::append_norms(std::vector<double>{1.0}, differences, "x", errors), stagger::Error);
-  EXPECT_THROW(stagger::append_norms(std::vector<double>{0.0}, std::vector<double>{1.0}, "x", errors),
-               stagger::Error);
+  EXPECT_THROW(stagger::append_norms(std::vector<double>{0.0}, std::vector<double>{1.0}, "x", errors), stagger::Error);
 }
 
 TEST(Norms, MedianDualAreasOfAUniformGridAreQuartersHalvesAndWholes) {
   const stagger::Mesh mesh = grid(4, 2, 0.0, 2.0, 0.0, 1.0);  // h = 0.5
   const auto areas = stagger::point_dual_areas(mesh, mesh.x, mesh.y);
-  EXPECT_NEAR(areas[0], 0.0625, 1e-15);       // corner point
-  EXPECT_NEAR(areas[1], 0.125, 1e-15);        // edge point
-  EXPECT_NEAR(areas[5 + 1], 0.25, 1e-15);     // interior point (1, 1)
+  EXPECT_NEAR(areas[0], 0.0625, 1e-15);    // corner point
+  EXPECT_NEAR(areas[1], 0.125, 1e-15);     // edge point
+  EXPECT_NEAR(areas[5 + 1], 0.25, 1e-15);  // interior point (1, 1)
   EXPECT_NEAR(std::accumulate(areas.begin(), areas.end(), 0.0), 2.0, 1e-14);
   const auto zone_areas = stagger::zone_areas(mesh, mesh.x, mesh.y);
   for (double a : zone_areas) EXPECT_NEAR(a, 0.25, 1e-15);
@@ -85,13 +84,11 @@ TEST(Norms, FrontCrossingInterpolatesBetweenNeighbourCentres) {
   // A step from 4 to 1 between x = 0.55 and 0.65 (centres of zones 5 and 6 in each row).
   std::vector<double> density(mesh.num_zones());
   for (Index z = 0; z < mesh.num_zones(); ++z) density[z] = centres[0][z] < 0.6 ? 4.0 : 1.0;
-  const auto front = stagger::front_crossing(mesh, mesh.x, mesh.y, density, 2.5,
-                                             [](double x, double) { return x; });
+  const auto front = stagger::front_crossing(mesh, mesh.x, mesh.y, density, 2.5, [](double x, double) { return x; });
   EXPECT_EQ(front.crossings, 3);  // one per row
   EXPECT_NEAR(front.position, 0.6, 1e-14);
   // A threshold the field never crosses gives no front.
-  const auto none = stagger::front_crossing(mesh, mesh.x, mesh.y, density, 10.0,
-                                            [](double x, double) { return x; });
+  const auto none = stagger::front_crossing(mesh, mesh.x, mesh.y, density, 10.0, [](double x, double) { return x; });
   EXPECT_EQ(none.crossings, 0);
 }
 

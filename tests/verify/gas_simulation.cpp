@@ -48,10 +48,10 @@ TEST(SimulationNorms, ZoneAndPointNormsMatchHandValues) {
   setup.velocity_x = [](double, double y) { return y; };
   const stagger::Simulation simulation(gas_box(1.0, 1.0, 4, 2, setup));
   stagger::NamedValues errors;
-  stagger::zone_field_errors(simulation, simulation.density(), [](double, double) { return 1.0; }, "density",
-                             errors);
-  stagger::point_field_errors(simulation, simulation.velocity_x(), [](double, double) { return 0.0; },
-                              "velocity", errors);
+  stagger::zone_field_errors(
+      simulation, simulation.density(), [](double, double) { return 1.0; }, "density", errors);
+  stagger::point_field_errors(
+      simulation, simulation.velocity_x(), [](double, double) { return 0.0; }, "velocity", errors);
   const auto e = as_map(errors);
   EXPECT_NEAR(e.at("L1_density"), 0.5, 1e-14);
   EXPECT_NEAR(e.at("L2_density"), std::sqrt((1.0 + 9.0 + 25.0 + 49.0) / 64.0 / 4.0), 1e-14);

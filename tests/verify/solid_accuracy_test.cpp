@@ -17,8 +17,10 @@ TEST(AccuracySolution, MomentumSourceCancelsTheStressDivergence) {
   auto syy = [&](double x, double y, double t) { return solution.stress_yy(x, y, t) - solution.pressure(x, y, t); };
   auto sxy = [&](double x, double y, double t) { return solution.stress_xy(x, y, t); };
   for (const auto& [x, y, t] : {std::array{0.1, 0.2, 0.0}, std::array{0.37, 0.81, 3e-5}, std::array{0.9, 0.05, 1e-4}}) {
-    const double div_x = (sxx(x + h, y, t) - sxx(x - h, y, t)) / (2 * h) + (sxy(x, y + h, t) - sxy(x, y - h, t)) / (2 * h);
-    const double div_y = (sxy(x + h, y, t) - sxy(x - h, y, t)) / (2 * h) + (syy(x, y + h, t) - syy(x, y - h, t)) / (2 * h);
+    const double div_x =
+        (sxx(x + h, y, t) - sxx(x - h, y, t)) / (2 * h) + (sxy(x, y + h, t) - sxy(x, y - h, t)) / (2 * h);
+    const double div_y =
+        (sxy(x + h, y, t) - sxy(x - h, y, t)) / (2 * h) + (syy(x, y + h, t) - syy(x, y - h, t)) / (2 * h);
     const auto b = solution.momentum_source(x, y, t);
     const double scale = std::hypot(div_x, div_y);
     EXPECT_GT(scale, 1e8);  // pressure gradient of order rho0 a0^2 * 0.1 * 2 pi

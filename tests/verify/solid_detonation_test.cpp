@@ -16,8 +16,8 @@ constexpr double kE0 = 0.085;  // Mbar cc/cc
 // JWL p(V, E) and c^2(V, E), E = rho0 e, written out again from docs/algorithm.md §3.
 double jwl_pressure(double v, double energy) {
   const auto& j = kJwl;
-  return j.A * (1 - j.omega / (j.R1 * v)) * std::exp(-j.R1 * v) + j.B * (1 - j.omega / (j.R2 * v)) * std::exp(-j.R2 * v) +
-         j.omega * energy / v;
+  return j.A * (1 - j.omega / (j.R1 * v)) * std::exp(-j.R1 * v) +
+         j.B * (1 - j.omega / (j.R2 * v)) * std::exp(-j.R2 * v) + j.omega * energy / v;
 }
 double jwl_sound_speed_squared(double v, double energy) {
   // c^2 = dp/drho|_e + p / rho^2 dp/de|_rho by central differences in rho and e.
@@ -56,11 +56,13 @@ TEST(CJDetonation, FlowBehindTheFrontIsSonic) {
 TEST(CJDetonation, ImpliedStateIsCloseToThePapersValues) {
   const CJDetonation cj;
   const auto& s = cj.cj_state();
-  std::printf("[ numbers  ] D %.6f cm/us, P_CJ %.6f Mbar, V_CJ %.6f, rho %.6f, u %.6f, c %.6f; plateau p %.6f "
-              "rho %.6f c %.6f\n", cj.cj_speed(), s.pressure, cj.cj_relative_volume(), s.density, s.velocity,
-              s.sound_speed, cj.plateau_pressure(), cj.plateau_state().density, cj.plateau_state().sound_speed);
-  EXPECT_NEAR(cj.cj_speed(), 0.798, 0.003 * 0.798);            // 0.7991 implied
-  EXPECT_NEAR(cj.cj_state().pressure, 0.295, 0.005 * 0.295);   // 0.2950 implied
+  std::printf(
+      "[ numbers  ] D %.6f cm/us, P_CJ %.6f Mbar, V_CJ %.6f, rho %.6f, u %.6f, c %.6f; plateau p %.6f "
+      "rho %.6f c %.6f\n",
+      cj.cj_speed(), s.pressure, cj.cj_relative_volume(), s.density, s.velocity, s.sound_speed, cj.plateau_pressure(),
+      cj.plateau_state().density, cj.plateau_state().sound_speed);
+  EXPECT_NEAR(cj.cj_speed(), 0.798, 0.003 * 0.798);           // 0.7991 implied
+  EXPECT_NEAR(cj.cj_state().pressure, 0.295, 0.005 * 0.295);  // 0.2950 implied
 }
 
 TEST(CJDetonation, FitIsConsistentWithTheStandardDensity) {
@@ -132,7 +134,8 @@ TEST(CJDetonation, TaylorWaveSolvesTheEulerEquations) {
     const double t = 1.0, h = 1e-5;
     auto s = [&](double xx, double tt) { return cj.sample(xx, tt); };
     const double rho_t = (s(x, t + h).density - s(x, t - h).density) / (2 * h);
-    const double flux_x = (s(x + h, t).density * s(x + h, t).velocity - s(x - h, t).density * s(x - h, t).velocity) / (2 * h);
+    const double flux_x =
+        (s(x + h, t).density * s(x + h, t).velocity - s(x - h, t).density * s(x - h, t).velocity) / (2 * h);
     EXPECT_NEAR(rho_t + flux_x, 0.0, 1e-6 * std::abs(rho_t)) << "mass at x = " << x;
     const auto c = s(x, t);
     const double u_t = (s(x, t + h).velocity - s(x, t - h).velocity) / (2 * h);

@@ -28,7 +28,8 @@ void expect_jump_conditions(const SolidState& a, const SolidState& b, double d) 
   const double pa = a.pressure - a.stress_xx, pb = b.pressure - b.stress_xx;
   EXPECT_NEAR(mass_a * (b.velocity - a.velocity), pb - pa, 1e-10 * pb);
   // Conservation form: m (E_b - E_a) = P_b u_b - P_a u_a, E = e + u^2 / 2.
-  const double energy_flux = mass_a * ((b.energy + 0.5 * b.velocity * b.velocity) - (a.energy + 0.5 * a.velocity * a.velocity));
+  const double energy_flux =
+      mass_a * ((b.energy + 0.5 * b.velocity * b.velocity) - (a.energy + 0.5 * a.velocity * a.velocity));
   EXPECT_NEAR(energy_flux, pb * b.velocity - pa * a.velocity, 1e-10 * pb * b.velocity);
 }
 
@@ -66,8 +67,8 @@ TEST(ElasticPlasticPiston, ShockedStatesSitOnTheYieldSurface) {
 TEST(ElasticPlasticPiston, PrecursorOutrunsThePlasticShockAndIsSupersonic) {
   const ElasticPlasticPiston piston;
   const double c_longitudinal = std::sqrt(3940.0 * 3940.0 + 4.0 / 3.0 * 45e9 / 8930.0);
-  EXPECT_GT(piston.elastic_wave_speed(), c_longitudinal);            // Lax condition ahead
-  EXPECT_LT(piston.elastic_wave_speed(), 1.01 * c_longitudinal);     // weak shock
+  EXPECT_GT(piston.elastic_wave_speed(), c_longitudinal);         // Lax condition ahead
+  EXPECT_LT(piston.elastic_wave_speed(), 1.01 * c_longitudinal);  // weak shock
   EXPECT_LT(piston.plastic_wave_speed(), piston.elastic_wave_speed());
   EXPECT_GT(piston.plastic_wave_speed(), piston.elastic_state().velocity);
   const double t = 150e-6;

@@ -12,7 +12,9 @@
 
 namespace {
 
-std::map<std::string, double> as_map(const stagger::NamedValues& values) { return {values.begin(), values.end()}; }
+std::map<std::string, double> as_map(const stagger::NamedValues& values) {
+  return {values.begin(), values.end()};
+}
 
 stagger::Problem solid_problem(stagger::PolygonSoup soup, stagger::MieGruneisen eos, stagger::Strength strength,
                                stagger::RegionSetup setup, stagger::BoundaryKind kind) {
@@ -56,7 +58,8 @@ TEST(SolidReferences, ShellReferenceMeasuresTheInitialQuarterShell) {
   // The sector's discrete kinetic energy against the analytic one scaled to a quarter: the
   // chords of the polygonal circles make the sector's mass slightly smaller; 1% is plenty.
   EXPECT_NEAR(d.at("kinetic_energy"), d.at("kinetic_energy_exact"), 0.01 * d.at("kinetic_energy_exact"));
-  EXPECT_NEAR(d.at("kinetic_energy_exact"), stagger::HowellBallShell().kinetic_energy(0) / 4, 0.01 * d.at("kinetic_energy_exact"));
+  EXPECT_NEAR(d.at("kinetic_energy_exact"), stagger::HowellBallShell().kinetic_energy(0) / 4,
+              0.01 * d.at("kinetic_energy_exact"));
 }
 
 TEST(SolidReferences, AccuracyReferenceVanishesOnTheExactInitialState) {
@@ -69,8 +72,8 @@ TEST(SolidReferences, AccuracyReferenceVanishesOnTheExactInitialState) {
   setup.stress_xx = [&](double x, double y) { return exact.stress_xx(x, y, 0); };
   setup.stress_yy = [&](double x, double y) { return exact.stress_yy(x, y, 0); };
   setup.stress_xy = [&](double x, double y) { return exact.stress_xy(x, y, 0); };
-  auto problem = solid_problem(stagger::meshgen::rectangle(0, 1, 0, 1, 8, 8), {8930.0, 3940.0, 2.0, 1.49},
-                               {45e9, 90e9}, setup, stagger::BoundaryKind::free);
+  auto problem = solid_problem(stagger::meshgen::rectangle(0, 1, 0, 1, 8, 8), {8930.0, 3940.0, 2.0, 1.49}, {45e9, 90e9},
+                               setup, stagger::BoundaryKind::free);
   const stagger::Simulation simulation(std::move(problem));
   stagger::NamedValues errors, diagnostics;
   stagger::accuracy_reference()(simulation, errors, diagnostics);

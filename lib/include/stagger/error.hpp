@@ -9,7 +9,7 @@ namespace stagger {
 
 /// Thrown by every library call that rejects user data or cannot continue a run.
 class Error : public std::runtime_error {
-public:
+ public:
   /// `message`: one line naming what is wrong, where, and what to do.
   explicit Error(const std::string& message) : std::runtime_error(message) {}
 };

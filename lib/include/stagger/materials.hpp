@@ -43,12 +43,12 @@ struct Strength {
 /// Programmed burn (LS-DYNA style): lighting time = distance to the nearest detonator
 /// (points, or a plane through `plane_point` with normal `plane_normal`) / detonation_speed.
 struct Burn {
-  double detonation_speed = 0;                     ///< D_CJ
-  std::vector<std::array<double, 2>> points;       ///< detonation points
-  std::optional<std::array<double, 4>> plane;      ///< (x0, y0, nx, ny): a detonation line
-  double time_offset = 0;                          ///< lighting time added to every zone
-  bool beta_burn = false;                          ///< also burn on compression
-  double cj_relative_volume = 0;                   ///< V_CJ/V0 for the beta burn
+  double detonation_speed = 0;                 ///< D_CJ
+  std::vector<std::array<double, 2>> points;   ///< detonation points
+  std::optional<std::array<double, 4>> plane;  ///< (x0, y0, nx, ny): a detonation line
+  double time_offset = 0;                      ///< lighting time added to every zone
+  bool beta_burn = false;                      ///< also burn on compression
+  double cj_relative_volume = 0;               ///< V_CJ/V0 for the beta burn
 };
 
 /// A named material: one EOS, optional strength and burn.
@@ -57,7 +57,7 @@ struct Material {
   EquationOfState eos = IdealGas{};  ///< the pointwise p(rho, e)
   std::optional<Strength> strength;  ///< none: a fluid (no deviatoric stress)
   std::optional<Burn> burn;          ///< programmed burn (JWL products only)
-  double min_energy = -1e300;  ///< floor reported as an error when crossed (EOS domain)
+  double min_energy = -1e300;        ///< floor reported as an error when crossed (EOS domain)
 };
 
 /// Pointwise EOS evaluation (used by set-up, tests and the exact solutions).

@@ -21,14 +21,14 @@ struct TaggedEdge {
 /// Polygons as they come from a file or a generator: any orientation, possibly with
 /// orphan points. Regions (physical surfaces) and boundary tags (physical curves) by name.
 struct PolygonSoup {
-  std::vector<double> x, y;                   ///< point coordinates
+  std::vector<double> x, y;                    ///< point coordinates
   std::vector<std::int64_t> polygon_begin{0};  ///< offsets into polygon_points (size npoly+1)
-  std::vector<std::int64_t> polygon_points;   ///< point ids of each polygon, in order
-  std::vector<int> polygon_region;            ///< region index of each polygon
-  std::vector<std::string> region_names;      ///< region index -> name
-  std::vector<TaggedEdge> tagged_edges;       ///< boundary segments with tag indices
-  std::vector<std::string> tag_names;         ///< tag index -> name
-  std::string source = "<memory>";            ///< file name (or description) for messages
+  std::vector<std::int64_t> polygon_points;    ///< point ids of each polygon, in order
+  std::vector<int> polygon_region;             ///< region index of each polygon
+  std::vector<std::string> region_names;       ///< region index -> name
+  std::vector<TaggedEdge> tagged_edges;        ///< boundary segments with tag indices
+  std::vector<std::string> tag_names;          ///< tag index -> name
+  std::string source = "<memory>";             ///< file name (or description) for messages
   /// 2D elements of the file that belong to no physical surface (left out of the soup);
   /// build_mesh notes them, and rejects them under quads_only.
   std::int64_t unassigned_elements = 0;
@@ -44,7 +44,7 @@ struct PolygonSoup {
 struct BoundaryTag {
   std::string name;                         ///< physical curve name (e.g. "left")
   std::vector<std::array<Index, 2>> edges;  ///< point pairs, in the zone's CCW order
-  std::vector<Index> points;  ///< sorted, unique
+  std::vector<Index> points;                ///< sorted, unique
 };
 
 /// The checked mesh. Zones are counter-clockwise polygons sorted by region; each zone's
@@ -79,9 +79,10 @@ struct Mesh {
 
 /// What build_mesh repaired or dropped, for the user to read.
 struct MeshBuildReport {
-  int reoriented_zones = 0;        ///< clockwise zones turned counter-clockwise
+  int reoriented_zones = 0;  ///< clockwise zones turned counter-clockwise
   int dropped_points = 0;
-  double topology_seconds = 0;  ///< wall time of the CGAL topology check (0 when skipped)          ///< orphan points removed
+  double topology_seconds =
+      0;  ///< wall time of the CGAL topology check (0 when skipped)          ///< orphan points removed
   std::vector<std::string> notes;  ///< one line per repair, for the user
 };
 
@@ -99,15 +100,14 @@ struct MeshBuildOptions {
 /// and counter-clockwise, non-manifold points/edges, degenerate or self-intersecting zones
 /// and duplicate points rejected (stagger::Error naming the zone/point and the source),
 /// orphan points dropped, zones sorted by region, tagged edges matched to mesh edges.
-Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options = {},
-                MeshBuildReport* report = nullptr);
+Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options = {}, MeshBuildReport* report = nullptr);
 
 /// Mesh quality figures (user report, `stagger mesh --check`).
 struct MeshQuality {
-  double min_area = 0, max_area = 0;  ///< zone areas
-  double max_aspect_ratio = 0;    ///< longest edge / shortest edge over zones
-  double min_angle_degrees = 0;   ///< smallest interior angle
-  Index non_convex_zones = 0;     ///< zones with an interior angle above 180 degrees
+  double min_area = 0, max_area = 0;                   ///< zone areas
+  double max_aspect_ratio = 0;                         ///< longest edge / shortest edge over zones
+  double min_angle_degrees = 0;                        ///< smallest interior angle
+  Index non_convex_zones = 0;                          ///< zones with an interior angle above 180 degrees
   Index triangles = 0, quads = 0, other_polygons = 0;  ///< zones by vertex count
 };
 /// Computes the quality figures of a mesh (at its stored positions).

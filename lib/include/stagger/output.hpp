@@ -38,7 +38,7 @@ void write_mesh_vtu(const std::string& path, const Mesh& mesh);
 
 /// A ParaView collection (.pvd) listing every dump; rewritten whole after each add().
 class PvdWriter {
-public:
+ public:
   explicit PvdWriter(std::string pvd_path);
   /// Records `vtu_file` (relative to the .pvd's directory) at `time` and rewrites the .pvd.
   void add(double time, const std::string& vtu_file);
@@ -50,7 +50,7 @@ public:
   /// it, with `why`) and rewrites the .pvd.
   void mark_last_good_state(const std::string& why);
 
-private:
+ private:
   void write() const;
   std::string path_;
   std::vector<std::pair<double, std::string>> entries_;
@@ -61,7 +61,7 @@ private:
 /// source_work, total, relative_energy_error, momentum_x, momentum_y. Kept in memory and
 /// rewritten atomically by flush().
 class HistoryWriter {
-public:
+ public:
   explicit HistoryWriter(std::string csv_path);
   /// Appends one row for the simulation's current state (in memory).
   void record(const Simulation& simulation);
@@ -72,25 +72,25 @@ public:
   /// Replaces the rows (restart from a checkpoint).
   void restore(std::string rows) { rows_ = std::move(rows); }
 
-private:
+ private:
   std::string path_;
   std::string rows_;
 };
 
 /// Everything summary.json reports beyond the simulation's own state.
 struct RunSummary {
-  std::string scene;             ///< scene file (or problem name)
-  double wall_seconds = 0;       ///< whole run
-  double loop_seconds = 0;       ///< time loop alone (for zone_cycles_per_second)
-  int threads = 1;               ///< OpenMP threads used
+  std::string scene;                 ///< scene file (or problem name)
+  double wall_seconds = 0;           ///< whole run
+  double loop_seconds = 0;           ///< time loop alone (for zone_cycles_per_second)
+  int threads = 1;                   ///< OpenMP threads used
   std::string status = "completed";  ///< or the error message that stopped the run
-  std::string last_dump;         ///< the last .vtu written (empty: dumps off)
-  double last_dump_time = 0;     ///< its time
+  std::string last_dump;             ///< the last .vtu written (empty: dumps off)
+  double last_dump_time = 0;         ///< its time
   /// The run stopped and the last dump holds its last good state (what was committed
   /// before the step that failed); docs/output.md.
   bool last_good_state = false;
-  NamedValues errors;            ///< error norms from the reference (L1_density, ...)
-  NamedValues diagnostics;       ///< other reference figures (shock position, ...)
+  NamedValues errors;       ///< error norms from the reference (L1_density, ...)
+  NamedValues diagnostics;  ///< other reference figures (shock position, ...)
 };
 
 /// Writes one CSV row per zone, in mesh order: zone, region (name), x, y (centre = vertex

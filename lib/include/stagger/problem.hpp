@@ -27,11 +27,11 @@ TimeFunction constant_in_time(double value);
 /// average), point fields at the points (a point shared by regions takes the first region
 /// in Problem::regions that contains it). Give either pressure or specific_internal_energy.
 struct RegionSetup {
-  std::string region;    ///< region name in the mesh
-  std::string material;  ///< material name in Problem::materials
-  SpaceFunction density;                   ///< rho0(x, y) > 0 (required)
-  SpaceFunction pressure;                  ///< or:
-  SpaceFunction specific_internal_energy;  ///< (exactly one of the two)
+  std::string region;                              ///< region name in the mesh
+  std::string material;                            ///< material name in Problem::materials
+  SpaceFunction density;                           ///< rho0(x, y) > 0 (required)
+  SpaceFunction pressure;                          ///< or:
+  SpaceFunction specific_internal_energy;          ///< (exactly one of the two)
   SpaceFunction velocity_x = constant_field(0.0);  ///< initial point velocity, x component
   SpaceFunction velocity_y = constant_field(0.0);  ///< initial point velocity, y component
   /// Initial deviatoric stress (materials with strength only); empty = zero.
@@ -61,7 +61,7 @@ struct BoundaryCondition {
   /// Prescribed velocity u(t) (kind velocity).
   TimeFunction velocity_x = constant_in_time(0.0), velocity_y = constant_in_time(0.0);
   TimeFunction pressure = constant_in_time(0.0);  ///< applied pressure p(t) (kind pressure)
-  std::string partner;  ///< periodic: the other tag
+  std::string partner;                            ///< periodic: the other tag
 };
 
 /// Artificial viscosity: zone-centred bulk q, or the edge-centred viscosity with limiter.
@@ -79,21 +79,21 @@ enum class StressUpdate { rate, objective };
 /// Numerical options (a scene's [numerics]). Ranges, units and meanings: numerics_option_table()
 /// in option_table.hpp, which the scene reader, validate() and docs/scenes.md share.
 struct HydroOptions {
-  double cfl = 0.15;                 ///< c_t, in (0, 1)
+  double cfl = 0.15;  ///< c_t, in (0, 1)
   Viscosity viscosity = Viscosity::bulk;
-  double q1 = 1.5, q2 = 0.06;        ///< bulk q (quadratic, linear)
+  double q1 = 1.5, q2 = 0.06;           ///< bulk q (quadratic, linear)
   double edge_c1 = 0.5, edge_c2 = 1.0;  ///< edge viscosity (linear, quadratic)
-  bool edge_limiter = true;          ///< Christensen limiter for the edge viscosity
+  bool edge_limiter = true;             ///< Christensen limiter for the edge viscosity
   Hourglass hourglass = Hourglass::gamma;
   double hourglass_coefficient = 0.1;  ///< Q; 0 turns hourglass control off
   StressUpdate stress_update = StressUpdate::rate;
-  bool fresh_predictor = false;      ///< evaluate f^n afresh each cycle (reference option)
-  double volume_limit = 0.1;         ///< f_A
+  bool fresh_predictor = false;  ///< evaluate f^n afresh each cycle (reference option)
+  double volume_limit = 0.1;     ///< f_A
   double dt_growth = 1.1;
-  double dt_init = 0;                ///< 0 = the CFL value at t = 0
-  double dt_max = 0;                 ///< 0 = none
-  double dt_min = 0;                 ///< 0 = 1e-8 t_end
-  int max_retries = 3;               ///< halvings of dt for a tangled step, in [0, 30]
+  double dt_init = 0;   ///< 0 = the CFL value at t = 0
+  double dt_max = 0;    ///< 0 = none
+  double dt_min = 0;    ///< 0 = 1e-8 t_end
+  int max_retries = 3;  ///< halvings of dt for a tangled step, in [0, 30]
   /// Treat a non-positive median-mesh corner area as tangling (docs/algorithm.md §9).
   /// A zone whose vertex-average centre crosses a reflex vertex (the Sedov hot corner on a
   /// Cartesian mesh) trips it while its area is still positive; false checks zone areas only.
@@ -112,15 +112,15 @@ struct Sources {
 /// (Simulation::problem()). Boundary points that no BoundaryCondition constrains are
 /// traction-free.
 struct Problem {
-  std::string name = "problem";              ///< used in messages and output file names
-  Mesh mesh;                                 ///< from build_mesh (meshgen or your own soup)
-  std::vector<Material> materials;           ///< by name
-  std::vector<RegionSetup> regions;          ///< one per mesh region, exactly
-  std::vector<BoundaryCondition> boundaries; ///< by tag
-  std::vector<EnergyDeposit> deposits;       ///< point energy sources at t = 0 (Sedov)
-  std::optional<Sources> sources;            ///< manufactured-solution sources, if any
-  HydroOptions options;                      ///< numerics (defaults: docs/scenes.md [numerics])
-  double t_end = 0;                          ///< end time, > 0
+  std::string name = "problem";               ///< used in messages and output file names
+  Mesh mesh;                                  ///< from build_mesh (meshgen or your own soup)
+  std::vector<Material> materials;            ///< by name
+  std::vector<RegionSetup> regions;           ///< one per mesh region, exactly
+  std::vector<BoundaryCondition> boundaries;  ///< by tag
+  std::vector<EnergyDeposit> deposits;        ///< point energy sources at t = 0 (Sedov)
+  std::optional<Sources> sources;             ///< manufactured-solution sources, if any
+  HydroOptions options;                       ///< numerics (defaults: docs/scenes.md [numerics])
+  double t_end = 0;                           ///< end time, > 0
   /// Checks names, ranges and completeness; throws stagger::Error with the offending item.
   void validate() const;
 };

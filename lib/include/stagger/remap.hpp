@@ -12,9 +12,9 @@ namespace stagger {
 /// move points and rewrite the conserved fields; it must keep the zone and point masses
 /// consistent with what it writes. The spans are valid during the remap() call only.
 struct RemapState {
-  const Mesh& mesh;  ///< topology (positions below are the current ones)
-  double time;       ///< time at the end of the step just taken
-  long cycle;        ///< number of that step (1 for the first)
+  const Mesh& mesh;                                   ///< topology (positions below are the current ones)
+  double time;                                        ///< time at the end of the step just taken
+  long cycle;                                         ///< number of that step (1 for the first)
   std::span<double> x, y, velocity_x, velocity_y;     ///< point fields (writable)
   std::span<double> specific_internal_energy;         ///< zone field (writable)
   std::span<double> stress_xx, stress_yy, stress_xy;  ///< empty without strength
@@ -27,7 +27,7 @@ struct RemapState {
 /// Installed with Simulation::set_remap; called once per completed cycle, before the
 /// observer. The contract is spelled out in docs/api.md ("The observer and the remap").
 class Remap {
-public:
+ public:
   virtual ~Remap() = default;
   /// Remaps `state` in place. Returns false if nothing changed (the run is then bitwise
   /// that without a remap), true to have geometry, density and pressure recomputed.
@@ -36,7 +36,7 @@ public:
 
 /// The default: keeps the Lagrangian mesh as it is.
 class NoRemap final : public Remap {
-public:
+ public:
   bool remap(RemapState&) override { return false; }  ///< changes nothing
 };
 

@@ -17,18 +17,18 @@ class Simulation;
 /// What run() writes and where (a scene file's [output] section).
 struct RunControl {
   std::string output_directory = "output";
-  std::string name = "problem";        ///< base name of the .pvd and .vtu files
-  double dump_interval = 0;            ///< time between dumps; 0 = only first and last
-  bool dumps = true;                   ///< false: no .vtu/.pvd (benchmarks)
-  int history_every = 1;               ///< record history every N cycles
-  long checkpoint_every_cycles = 500;  ///< 0 = never (by cycles)
+  std::string name = "problem";          ///< base name of the .pvd and .vtu files
+  double dump_interval = 0;              ///< time between dumps; 0 = only first and last
+  bool dumps = true;                     ///< false: no .vtu/.pvd (benchmarks)
+  int history_every = 1;                 ///< record history every N cycles
+  long checkpoint_every_cycles = 500;    ///< 0 = never (by cycles)
   double checkpoint_every_seconds = 60;  ///< wall-clock; 0 = never (by time)
   bool checkpoints = true;
   /// Refuse a run whose schedule gives more dumps than this (a typo such as dump_interval
   /// = 1e-9 would otherwise write files until the disk is full). See estimated_dumps().
   long max_dumps = 10000;
-  bool progress = false;               ///< a progress line on stderr
-  Reference reference;                 ///< errors/diagnostics for summary.json (may be empty)
+  bool progress = false;  ///< a progress line on stderr
+  Reference reference;    ///< errors/diagnostics for summary.json (may be empty)
   /// Checks the ranges of output_option_table() (option_table.hpp); throws stagger::Error
   /// naming the option. run() and resume() call it.
   void validate() const;
@@ -37,8 +37,8 @@ struct RunControl {
 /// The outcome of run() / resume().
 struct RunResult {
   bool completed = false;  ///< t_end reached without error
-  std::string message;  ///< the error that stopped the run, if any
-  RunSummary summary;   ///< what summary.json holds beyond the state (timings, errors)
+  std::string message;     ///< the error that stopped the run, if any
+  RunSummary summary;      ///< what summary.json holds beyond the state (timings, errors)
 };
 
 /// The number of dumps the schedule gives up to `t_end`: the first and the last, and one

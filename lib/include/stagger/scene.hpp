@@ -43,9 +43,9 @@ struct VerificationSetup {
 
 /// A scene file read and resolved: what `stagger run` passes to Simulation and run().
 struct Scene {
-  std::string file;        ///< path of the scene file
-  Problem problem;         ///< the set-up, ready for Simulation (move it in)
-  RunControl control;      ///< output settings and the reference solution, for run()
+  std::string file;                ///< path of the scene file
+  Problem problem;                 ///< the set-up, ready for Simulation (move it in)
+  RunControl control;              ///< output settings and the reference solution, for run()
   std::vector<std::string> notes;  ///< repairs made on import (e.g. reoriented zones)
   VerificationSetup verification;  ///< the [verification] reference and its parameters
   /// Set-ups that make no sense but may be meant (untagged boundary edges, a run of a few
@@ -57,8 +57,7 @@ struct Scene {
 /// Reads, meshes and validates a scene. `overrides` are ("section.key", "value") pairs
 /// applied to the TOML before it is interpreted (the CLI's --set). Errors name the file,
 /// the line and the key.
-Scene load_scene(const std::string& path,
-                 const std::vector<std::pair<std::string, std::string>>& overrides = {});
+Scene load_scene(const std::string& path, const std::vector<std::pair<std::string, std::string>>& overrides = {});
 
 /// A human-readable description of the resolved set-up (`stagger check`).
 std::string describe(const Scene& scene);

@@ -30,7 +30,7 @@ struct EnergyAudit {
 /// The spans returned by the field accessors stay valid until the next step(),
 /// advance_to() or restore(); mesh() and problem() as long as this object (not moved from).
 class Simulation {
-public:
+ public:
   /// Validates the problem (stagger::Error on bad input) and sets up the state at t = 0.
   explicit Simulation(Problem problem);
   ~Simulation();
@@ -48,8 +48,8 @@ public:
   void advance_to(double t);
   bool finished() const;  ///< time() >= t_end
 
-  double time() const;  ///< current time t
-  long cycle() const;   ///< completed cycles (0 at set-up)
+  double time() const;           ///< current time t
+  long cycle() const;            ///< completed cycles (0 at set-up)
   double dt() const;             ///< the last step's dt (0 before the first)
   std::string dt_limit() const;  ///< what limited the last dt ("cfl zone 12", ...)
 
@@ -58,28 +58,28 @@ public:
 
   /// @name Point fields (size mesh().num_points())
   ///@{
-  std::span<const double> x() const;  ///< current point x
-  std::span<const double> y() const;  ///< current point y
+  std::span<const double> x() const;           ///< current point x
+  std::span<const double> y() const;           ///< current point y
   std::span<const double> velocity_x() const;  ///< point velocity, x component
   std::span<const double> velocity_y() const;  ///< point velocity, y component
   std::span<const double> point_mass() const;  ///< Lagrangian point mass (constant)
   ///@}
   /// @name Zone fields (size mesh().num_zones(), zones in mesh order)
   ///@{
-  std::span<const double> zone_mass() const;  ///< Lagrangian zone mass (constant)
-  std::span<const double> zone_area() const;  ///< zone area of the current positions
-  std::span<const double> density() const;  ///< zone density m_z / A_z
-  std::span<const double> pressure() const;  ///< zone pressure from the EOS
+  std::span<const double> zone_mass() const;                 ///< Lagrangian zone mass (constant)
+  std::span<const double> zone_area() const;                 ///< zone area of the current positions
+  std::span<const double> density() const;                   ///< zone density m_z / A_z
+  std::span<const double> pressure() const;                  ///< zone pressure from the EOS
   std::span<const double> specific_internal_energy() const;  ///< zone specific internal energy e
-  std::span<const double> artificial_viscosity() const;  ///< zone artificial viscosity q of the last step
-  std::span<const double> sound_speed() const;  ///< zone sound speed
-  bool has_strength() const;  ///< some material has strength (stress arrays exist)
-  std::span<const double> stress_xx() const;  ///< deviatoric S_xx; empty without strength
-  std::span<const double> stress_yy() const;       ///< deviatoric S_yy; empty without strength
-  std::span<const double> stress_xy() const;       ///< deviatoric S_xy; empty without strength
-  std::span<const double> plastic_strain() const;  ///< equivalent plastic strain; empty without strength
-  bool has_burn() const;  ///< some material has a programmed burn
-  std::span<const double> burn_fraction() const;  ///< empty without burn
+  std::span<const double> artificial_viscosity() const;      ///< zone artificial viscosity q of the last step
+  std::span<const double> sound_speed() const;               ///< zone sound speed
+  bool has_strength() const;                                 ///< some material has strength (stress arrays exist)
+  std::span<const double> stress_xx() const;                 ///< deviatoric S_xx; empty without strength
+  std::span<const double> stress_yy() const;                 ///< deviatoric S_yy; empty without strength
+  std::span<const double> stress_xy() const;                 ///< deviatoric S_xy; empty without strength
+  std::span<const double> plastic_strain() const;            ///< equivalent plastic strain; empty without strength
+  bool has_burn() const;                                     ///< some material has a programmed burn
+  std::span<const double> burn_fraction() const;             ///< empty without burn
   ///@}
 
   /// How a dumped array is written: a scalar, a component of a point vector (z = 0), or a
@@ -121,7 +121,7 @@ public:
   /// Implementation detail (opaque outside the library).
   struct Impl;
 
-private:
+ private:
   std::unique_ptr<Impl> impl_;
 };
 

@@ -23,7 +23,7 @@ struct GasState {
 /// Exact solution of the 1D Riemann problem for ideal gases (Toro, "Riemann Solvers and
 /// Numerical Methods for Fluid Dynamics", 3rd ed., ch. 4), interface at x0 at t = 0.
 class ExactRiemann {
-public:
+ public:
   ExactRiemann(GasState left, GasState right, double gamma, double x0 = 0.5);
   /// State at (x, t), t > 0.
   GasState sample(double x, double t) const;
@@ -37,7 +37,7 @@ public:
   /// is smooth (for exact piecewise integration).
   std::array<double, 5> wave_positions(double t) const;
 
-private:
+ private:
   GasState left_, right_;
   double gamma_, x0_;
   double p_star_ = 0, u_star_ = 0;
@@ -66,8 +66,7 @@ Reference shock_tube_reference(GasState left, GasState right, double gamma, doub
 // they can be used and tested without a Simulation.
 
 /// Zone centres (vertex average, docs/algorithm.md §2) for positions x, y.
-std::array<std::vector<double>, 2> zone_centres(const Mesh& mesh, std::span<const double> x,
-                                                std::span<const double> y);
+std::array<std::vector<double>, 2> zone_centres(const Mesh& mesh, std::span<const double> x, std::span<const double> y);
 /// Zone areas (shoelace, docs/algorithm.md §2) for positions x, y.
 std::vector<double> zone_areas(const Mesh& mesh, std::span<const double> x, std::span<const double> y);
 /// Median-dual area of every point: the sum of its corner areas, a corner being the
@@ -79,8 +78,8 @@ std::vector<double> point_dual_areas(const Mesh& mesh, std::span<const double> x
 /// used) weighted by `weights` (docs/verification.md §11). Entries with
 /// weight <= 0 are skipped by L1/L2 but not by Linf. Throws stagger::Error on size mismatch
 /// or when the total weight is not positive.
-void append_norms(std::span<const double> weights, std::span<const double> differences,
-                  const std::string& name, NamedValues& errors);
+void append_norms(std::span<const double> weights, std::span<const double> differences, const std::string& name,
+                  NamedValues& errors);
 
 /// Point counterpart of zone_field_errors: a point field against exact(x_p, y_p), weighted
 /// by the point's median-dual area (point_dual_areas on the current positions).
@@ -90,8 +89,8 @@ void point_field_errors(const Simulation& simulation, std::span<const double> fi
 /// Point velocity against an exact vector field: norms of the magnitude |v_p - v_exact(x_p)|,
 /// appended as L1_<name>, L2_<name>, Linf_<name>.
 void point_velocity_errors(const Simulation& simulation,
-                           const std::function<std::array<double, 2>(double, double)>& exact,
-                           const std::string& name, NamedValues& errors);
+                           const std::function<std::array<double, 2>(double, double)>& exact, const std::string& name,
+                           NamedValues& errors);
 
 /// Where a zone field falls through `threshold` going outward in `coordinate` (r, x, ...):
 /// every pair of zones sharing an edge whose inner zone (smaller coordinate at its centre)
@@ -107,8 +106,7 @@ struct FrontCrossing {
 /// wall-heating dip at the Noh centre, which crosses the threshold too).
 FrontCrossing front_crossing(const Mesh& mesh, std::span<const double> x, std::span<const double> y,
                              std::span<const double> field, double threshold,
-                             const std::function<double(double, double)>& coordinate,
-                             double min_position = -1e300);
+                             const std::function<double(double, double)>& coordinate, double min_position = -1e300);
 
 /// Groups indices whose values agree within `tolerance` (values sorted, consecutive values
 /// closer than the tolerance chained into one group). Used for "rings" and "columns".
@@ -120,14 +118,14 @@ std::vector<std::vector<Index>> group_by_value(std::span<const double> values, d
 /// rho0 ((gamma + 1)/(gamma - 1))^nu and specific internal energy u0^2 / 2; ahead of it the
 /// density is rho0 (1 + u0 t / r)^(nu - 1).
 class NohSolution {
-public:
+ public:
   NohSolution(double gamma = 5.0 / 3.0, double rho0 = 1.0, double u0 = 1.0, int nu = 2);
   double shock_radius(double t) const;
   double post_shock_density() const;
   /// Density, radial velocity and pressure at radius r, time t > 0.
   GasState state(double r, double t) const;
 
-private:
+ private:
   double gamma_, rho0_, u0_;
   int nu_;
 };
@@ -149,7 +147,7 @@ Reference noh_reference(double gamma = 5.0 / 3.0, double rho0 = 1.0, double u0 =
 /// is R(t) = (E / (alpha rho0))^(1/(nu+2)) t^(2/(nu+2)); alpha comes from quadrature of the
 /// energy integral (alpha = xi0^-(nu+2) in Sedov's notation): 0.98407 for gamma = 1.4, nu = 2.
 class SedovSolution {
-public:
+ public:
   SedovSolution(double gamma, int nu = 2, double rho0 = 1.0, double energy = 1.0);
   double alpha() const { return alpha_; }
   double shock_radius(double t) const;
@@ -160,7 +158,7 @@ public:
   /// The similarity functions at lambda = r / R in [0, 1]: u / u2, rho / rho2, p / p2.
   std::array<double, 3> similarity(double lambda) const;
 
-private:
+ private:
   struct Functions {
     double lambda, f, g, h;
   };
@@ -221,10 +219,10 @@ struct SolidState {
 /// of elastic-plastic flow", Methods Comput. Phys. 3, 1964).
 struct PistonParameters {
   MieGruneisen eos{8930.0, 3940.0, 2.0, 1.49};
-  double shear_modulus = 45e9;   ///< mu
-  double yield_stress = 90e6;    ///< Y (von Mises, sqrt(3/2 S:S) with S_zz kept)
-  double initial_pressure = 1e5; ///< p0 at rho0 (e0 = p0 / (Gamma0 rho0))
-  double piston_velocity = 20.0; ///< along +x, from x = 0 at t = 0
+  double shear_modulus = 45e9;    ///< mu
+  double yield_stress = 90e6;     ///< Y (von Mises, sqrt(3/2 S:S) with S_zz kept)
+  double initial_pressure = 1e5;  ///< p0 at rho0 (e0 = p0 / (Gamma0 rho0))
+  double piston_velocity = 20.0;  ///< along +x, from x = 0 at t = 0
 };
 
 /// Exact two-wave solution of the piston problem for the continuum that the scheme
@@ -235,7 +233,7 @@ struct PistonParameters {
 /// -sigma_xx = p - S_xx; the plastic shock keeps S_xx = -2Y/3. Throws stagger::Error when the
 /// piston is too slow to yield the material (a single elastic wave) or the EOS domain is left.
 class ElasticPlasticPiston {
-public:
+ public:
   explicit ElasticPlasticPiston(const PistonParameters& parameters = {});
   const SolidState& initial_state() const { return initial_; }
   const SolidState& elastic_state() const { return elastic_; }
@@ -247,7 +245,7 @@ public:
   SolidState sample(double x, double t) const;
   const PistonParameters& parameters() const { return parameters_; }
 
-private:
+ private:
   PistonParameters parameters_;
   SolidState initial_, elastic_, plastic_;
   double elastic_speed_ = 0, plastic_speed_ = 0;
@@ -275,11 +273,11 @@ struct ShellParameters {
 /// at the plastic dissipation rate (4 pi / sqrt(3)) Y |Ri Ri'| ln(Ro/Ri); integrating in
 /// r = Ri^2 gives the velocity in closed form and the time by quadrature.
 class HowellBallShell {
-public:
+ public:
   explicit HowellBallShell(const ShellParameters& parameters = {});
-  double inner_radius(double t) const;   ///< stays at the stopping radius after stopping_time
-  double outer_radius(double t) const;   ///< Ro^2 - Ri^2 is constant
-  double inner_velocity(double t) const; ///< dRi/dt (negative, 0 after stopping)
+  double inner_radius(double t) const;    ///< stays at the stopping radius after stopping_time
+  double outer_radius(double t) const;    ///< Ro^2 - Ri^2 is constant
+  double inner_velocity(double t) const;  ///< dRi/dt (negative, 0 after stopping)
   /// Kinetic energy per unit length of the full circle.
   double kinetic_energy(double t) const;
   /// Plastic dissipation rate per unit length of the full circle.
@@ -289,7 +287,7 @@ public:
   double outer_stopping_radius() const;
   const ShellParameters& parameters() const { return parameters_; }
 
-private:
+ private:
   double inner_radius_squared(double t) const;
   double velocity_at(double r2) const;  // Ri Ri' as a function of r2 = Ri^2
   ShellParameters parameters_;
@@ -327,12 +325,12 @@ struct DetonationState {
 /// p = A e^{-R1 V} + B e^{-R2 V} + C V^{-(1+omega)} through the CJ point to rest (u = 0), a
 /// plateau that reaches x / t = c_plateau.
 class CJDetonation {
-public:
+ public:
   explicit CJDetonation(const DetonationParameters& parameters = {});
   /// The CJ state implied by the JWL fit (velocity in the lab frame, behind the front).
   const DetonationState& cj_state() const { return cj_; }
-  double cj_speed() const { return speed_; }            ///< D implied by the fit
-  double cj_relative_volume() const { return v_cj_; }   ///< V_CJ = rho0 / rho_CJ
+  double cj_speed() const { return speed_; }           ///< D implied by the fit
+  double cj_relative_volume() const { return v_cj_; }  ///< V_CJ = rho0 / rho_CJ
   const DetonationState& plateau_state() const { return plateau_; }
   double plateau_pressure() const { return plateau_.pressure; }
   /// Products' Hugoniot pressure at relative volume V (from the unreacted state at p = 0).
@@ -347,7 +345,7 @@ public:
   DetonationState sample(double x, double t) const;
   const DetonationParameters& parameters() const { return parameters_; }
 
-private:
+ private:
   double jwl_pressure(double relative_volume, double energy_per_volume) const;
   DetonationParameters parameters_;
   DetonationState cj_, plateau_;
@@ -377,7 +375,7 @@ struct AccuracyParameters {
 };
 
 class AccuracySolution {
-public:
+ public:
   explicit AccuracySolution(const AccuracyParameters& parameters = {});
   double density(double x, double y, double t) const;
   double pressure(double x, double y, double t) const;
@@ -388,7 +386,7 @@ public:
   std::array<double, 2> momentum_source(double x, double y, double t) const;
   const AccuracyParameters& parameters() const { return parameters_; }
 
-private:
+ private:
   AccuracyParameters parameters_;
 };
 

@@ -8,9 +8,9 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <charconv>
 #include <chrono>
-#include <cerrno>
 #include <climits>
 #include <cmath>
 #include <cstdint>
@@ -50,8 +50,8 @@ constexpr std::uint64_t checkpoint_version = 2;
 /// The run's own state beyond the simulation: what a restart needs to continue the same
 /// output schedule (dump times and numbering, .pvd entries, history rows, timings).
 struct DriverState {
-  double next_dump_time = 0;   ///< time of the next scheduled dump
-  std::int64_t dump_slot = 0;  ///< next_dump_time = dump_slot * dump_interval (or t_end)
+  double next_dump_time = 0;    ///< time of the next scheduled dump
+  std::int64_t dump_slot = 0;   ///< next_dump_time = dump_slot * dump_interval (or t_end)
   std::int64_t dump_count = 0;  ///< dumps written (the file number of the next one)
   double last_dump_time = -std::numeric_limits<double>::infinity();
   std::int64_t last_history_cycle = -1;
@@ -71,7 +71,7 @@ const std::string& checked_name(const std::string& name) {
 constexpr const char* lock_file_name = ".stagger.lock";
 
 class Driver {
-public:
+ public:
   Driver(Simulation& simulation, const RunControl& control)
       : simulation_(simulation),
         control_(control),
@@ -89,9 +89,10 @@ public:
     const double t_end = simulation_.problem().t_end;
     const long count = estimated_dumps(control_, t_end);
     if (count > control_.max_dumps) {
-      throw Error("output.dump_interval = " + format_number(control_.dump_interval) + " with time.end = " +
-                  format_number(t_end) + " gives " + std::to_string(count) + " dumps, more than output.max_dumps = " +
-                  std::to_string(control_.max_dumps) + "; raise output.dump_interval (or output.max_dumps)");
+      throw Error("output.dump_interval = " + format_number(control_.dump_interval) +
+                  " with time.end = " + format_number(t_end) + " gives " + std::to_string(count) +
+                  " dumps, more than output.max_dumps = " + std::to_string(control_.max_dumps) +
+                  "; raise output.dump_interval (or output.max_dumps)");
     }
   }
 
@@ -121,7 +122,8 @@ public:
       throw Error("cannot lock output directory '" + directory_.string() + "': " + std::strerror(code));
     }
     const std::string pid = std::to_string(::getpid()) + "\n";
-    if (::ftruncate(lock_fd_, 0) != 0 || ::pwrite(lock_fd_, pid.data(), pid.size(), 0) != static_cast<ssize_t>(pid.size())) {
+    if (::ftruncate(lock_fd_, 0) != 0 ||
+        ::pwrite(lock_fd_, pid.data(), pid.size(), 0) != static_cast<ssize_t>(pid.size())) {
       throw Error("cannot write the lock file '" + path.string() + "': " + std::strerror(errno) +
                   "; free space or choose another output directory");
     }
@@ -156,8 +158,8 @@ public:
     std::error_code ec;
     fs::create_directories(directory_, ec);
     if (ec || !fs::is_directory(directory_)) {
-      throw Error("cannot create output directory '" + directory_.string() + "': " +
-                  (ec ? ec.message() : std::string("a file of that name exists")) +
+      throw Error("cannot create output directory '" + directory_.string() +
+                  "': " + (ec ? ec.message() : std::string("a file of that name exists")) +
                   "; choose a writable output directory (--out)");
     }
     // Permissions alone do not tell (read-only mounts, ACLs): write and remove a probe.
@@ -169,7 +171,8 @@ public:
       if (!out) {
         std::error_code ignored;
         fs::remove(probe, ignored);
-        throw Error("output directory '" + directory_.string() + "' is not writable (a test file could not be "
+        throw Error("output directory '" + directory_.string() +
+                    "' is not writable (a test file could not be "
                     "created in it); choose a writable output directory (--out)");
       }
     }
@@ -183,8 +186,8 @@ public:
     std::error_code ec;
     for (const auto& entry : fs::directory_iterator(directory_, ec)) {
       const std::string name = entry.path().filename().string();
-      const bool ours = name.starts_with('.') && (name.find(".tmp.") != std::string::npos ||
-                                                  name.starts_with(".stagger-write-probe."));
+      const bool ours = name.starts_with('.') &&
+                        (name.find(".tmp.") != std::string::npos || name.starts_with(".stagger-write-probe."));
       if (!ours) continue;
       const std::string pid_text = name.substr(name.rfind('.') + 1);
       if (pid_text.empty() || pid_text.find_first_not_of("0123456789") != std::string::npos) continue;
@@ -228,7 +231,8 @@ public:
                   std::to_string(checkpoint_version) + "; restart from t = 0");
     }
     if (!intact) {
-      throw Error(source + " is corrupt or truncated (its checksum does not match); use another checkpoint or "
+      throw Error(source +
+                  " is corrupt or truncated (its checksum does not match); use another checkpoint or "
                   "restart from t = 0");
     }
     io_detail::ByteReader in(body.substr(0, body.size() - 8), source);
@@ -297,8 +301,8 @@ public:
       }
       if (control_.checkpoints) {
         const bool by_cycles = control_.checkpoint_every_cycles > 0 && cycle % control_.checkpoint_every_cycles == 0;
-        const bool by_time =
-            control_.checkpoint_every_seconds > 0 && seconds_since(last_checkpoint) >= control_.checkpoint_every_seconds;
+        const bool by_time = control_.checkpoint_every_seconds > 0 &&
+                             seconds_since(last_checkpoint) >= control_.checkpoint_every_seconds;
         if (by_cycles || by_time) {
           state_.loop_seconds = loop_seconds_before + seconds_since(loop_start);
           write_checkpoint();
@@ -357,7 +361,7 @@ public:
     return result;
   }
 
-private:
+ private:
   /// The time of dump slot k: k * dump_interval, or t_end for the last one (a slot closer
   /// to t_end than a millionth of the interval is merged with the final dump).
   double slot_time(std::int64_t k) const {
@@ -430,8 +434,10 @@ private:
       const double remaining = elapsed * (t_end - t) / (t - loop_start_time);
       std::snprintf(eta, sizeof eta, "%.0f s", remaining);
     }
-    std::fprintf(stderr, terminal ? "\rcycle %ld  t = %.6e  dt = %.3e  ETA %s      " : "cycle %ld  t = %.6e  dt = %.3e  ETA %s\n",
-                 simulation_.cycle(), t, simulation_.dt(), eta);
+    std::fprintf(
+        stderr,
+        terminal ? "\rcycle %ld  t = %.6e  dt = %.3e  ETA %s      " : "cycle %ld  t = %.6e  dt = %.3e  ETA %s\n",
+        simulation_.cycle(), t, simulation_.dt(), eta);
     std::fflush(stderr);
   }
 

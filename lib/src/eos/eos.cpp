@@ -14,8 +14,7 @@ eos::PressureSound evaluate_or_throw(const EquationOfState& model, double rho, d
   const bool ok = std::visit([&](const auto& m) { return eos::evaluate(m, rho, e, out); }, model);
   if (!ok) {
     std::ostringstream msg;
-    msg << eos_kind(model) << " EOS: state rho = " << rho << ", e = " << e
-        << " is outside the model's domain";
+    msg << eos_kind(model) << " EOS: state rho = " << rho << ", e = " << e << " is outside the model's domain";
     throw Error(msg.str());
   }
   return out;
@@ -47,9 +46,12 @@ double eos_energy_from_pressure(const EquationOfState& model, double rho, double
 
 std::string eos_kind(const EquationOfState& model) {
   switch (model.index()) {
-    case 0: return "ideal_gas";
-    case 1: return "mie_gruneisen";
-    default: return "jwl";
+    case 0:
+      return "ideal_gas";
+    case 1:
+      return "mie_gruneisen";
+    default:
+      return "jwl";
   }
 }
 

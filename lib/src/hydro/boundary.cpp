@@ -57,7 +57,8 @@ void setup_boundaries(Simulation::Impl& s) {
     const BoundaryCondition& bc = bcs[b];
     const BoundaryTag& tag = mesh.tags[mesh.tag_index(bc.tag)];
     switch (bc.kind) {
-      case BoundaryKind::free: break;
+      case BoundaryKind::free:
+        break;
       case BoundaryKind::pressure:
         for (const auto& edge : tag.edges) s.pressure_edges.push_back({edge[0], edge[1], static_cast<int>(b)});
         break;
@@ -171,8 +172,8 @@ void apply_constraints(const Simulation::Impl& s, std::span<double> vx, std::spa
     uyp[i] = bc.velocity_y(t);
     if (!std::isfinite(uxp[i]) || !std::isfinite(uyp[i])) {
       std::ostringstream msg;
-      msg << "boundary '" << bc.tag << "': the prescribed velocity is not finite at t = " << t << " ("
-          << uxp[i] << ", " << uyp[i] << "): fix its expression";
+      msg << "boundary '" << bc.tag << "': the prescribed velocity is not finite at t = " << t << " (" << uxp[i] << ", "
+          << uyp[i] << "): fix its expression";
       throw Error(msg.str());
     }
   }
@@ -196,8 +197,8 @@ void apply_constraints(const Simulation::Impl& s, std::span<double> vx, std::spa
   }
 }
 
-void add_pressure_forces(const Simulation::Impl& s, std::span<const double> x, std::span<const double> y,
-                         double t, std::span<double> fx, std::span<double> fy) {
+void add_pressure_forces(const Simulation::Impl& s, std::span<const double> x, std::span<const double> y, double t,
+                         std::span<double> fx, std::span<double> fy) {
   for (const auto& edge : s.pressure_edges) {
     const double p = s.problem.boundaries[edge.bc].pressure(t);
     if (!std::isfinite(p)) {

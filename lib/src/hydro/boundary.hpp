@@ -15,8 +15,8 @@ void setup_boundaries(Simulation::Impl& s);
 void apply_constraints(const Simulation::Impl& s, std::span<double> vx, std::span<double> vy, double t);
 
 // Adds the applied-pressure forces at time t on the positions (x, y) into (fx, fy).
-void add_pressure_forces(const Simulation::Impl& s, std::span<const double> x, std::span<const double> y,
-                         double t, std::span<double> fx, std::span<double> fy);
+void add_pressure_forces(const Simulation::Impl& s, std::span<const double> x, std::span<const double> y, double t,
+                         std::span<double> fx, std::span<double> fy);
 
 // The points whose velocity apply_constraints may change (for the constraint-work sum).
 std::vector<Index> constrained_points(const Simulation::Impl& s);

@@ -67,26 +67,28 @@ void Problem::validate() const {
     require(mesh.region_index(r.region) >= 0, "region '" + r.region + "' is not in the mesh " + mesh.source +
                                                   " (its regions: " + list_names(mesh.region_names) + ")");
     require(material_names.count(r.material) > 0, "region '" + r.region + "': unknown material '" + r.material +
-                                                       "' (defined: " + list_names(all_materials) + ")");
+                                                      "' (defined: " + list_names(all_materials) + ")");
     require(covered.insert(r.region).second, "region '" + r.region + "' is set up twice");
     require(static_cast<bool>(r.density), "region '" + r.region + "': no density given");
     require(static_cast<bool>(r.pressure) != static_cast<bool>(r.specific_internal_energy),
             "region '" + r.region + "': give exactly one of pressure and specific_internal_energy");
   }
   for (const auto& name : mesh.region_names) {
-    require(covered.count(name) > 0, "mesh region '" + name + "' of " + mesh.source +
-                                         " has no material: add a region set-up for it");
+    require(covered.count(name) > 0,
+            "mesh region '" + name + "' of " + mesh.source + " has no material: add a region set-up for it");
   }
   for (const auto& b : boundaries) {
-    require(mesh.tag_index(b.tag) >= 0, "boundary tag '" + b.tag + "' is not in the mesh " + mesh.source +
-                                            " (its tags: " + [&] {
-                                              std::vector<std::string> t;
-                                              for (const auto& tag : mesh.tags) t.push_back(tag.name);
-                                              return list_names(t);
-                                            }() + ")");
+    require(
+        mesh.tag_index(b.tag) >= 0, "boundary tag '" + b.tag + "' is not in the mesh " + mesh.source + " (its tags: " +
+                                        [&] {
+                                          std::vector<std::string> t;
+                                          for (const auto& tag : mesh.tags) t.push_back(tag.name);
+                                          return list_names(t);
+                                        }() +
+                                        ")");
     if (b.kind == BoundaryKind::periodic) {
-      require(mesh.tag_index(b.partner) >= 0, "periodic boundary '" + b.tag + "': partner tag '" + b.partner +
-                                                  "' is not in the mesh");
+      require(mesh.tag_index(b.partner) >= 0,
+              "periodic boundary '" + b.tag + "': partner tag '" + b.partner + "' is not in the mesh");
     }
   }
 }

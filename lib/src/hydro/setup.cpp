@@ -171,7 +171,8 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
         throw Error("region '" + setup.region + "', " + zone_label(m, z) + ": " + err.what());
       }
     }
-    if (!std::isfinite(e0)) throw Error("region '" + setup.region + "': initial energy is not finite in " + zone_label(m, z));
+    if (!std::isfinite(e0))
+      throw Error("region '" + setup.region + "': initial energy is not finite in " + zone_label(m, z));
     if (std::holds_alternative<IdealGas>(mat.eos) && e0 < 0) {
       std::ostringstream msg;
       msg << "region '" << setup.region << "': an ideal gas needs a non-negative pressure and energy, but "

@@ -12,7 +12,9 @@
 
 namespace stagger {
 
-Simulation::Simulation(Problem problem) : impl_(std::make_unique<Impl>(std::move(problem))) { impl_->owner = this; }
+Simulation::Simulation(Problem problem) : impl_(std::make_unique<Impl>(std::move(problem))) {
+  impl_->owner = this;
+}
 Simulation::~Simulation() = default;
 // The observer is handed the owning Simulation: keep the back pointer right across moves.
 Simulation::Simulation(Simulation&& other) noexcept : impl_(std::move(other.impl_)) {
@@ -32,46 +34,102 @@ void Simulation::advance_to(double t) {
   while (impl_->t < t) impl_->step(t);
 }
 
-bool Simulation::finished() const { return impl_->t >= impl_->problem.t_end; }
-double Simulation::time() const { return impl_->t; }
-long Simulation::cycle() const { return impl_->cycle; }
-double Simulation::dt() const { return impl_->dt_last; }
+bool Simulation::finished() const {
+  return impl_->t >= impl_->problem.t_end;
+}
+double Simulation::time() const {
+  return impl_->t;
+}
+long Simulation::cycle() const {
+  return impl_->cycle;
+}
+double Simulation::dt() const {
+  return impl_->dt_last;
+}
 
 std::string Simulation::dt_limit() const {
   using R = Impl::DtReason;
   switch (impl_->dt_reason) {
-    case R::cfl: return "cfl/volume limit of zone " + std::to_string(impl_->dt_zone);
-    case R::growth: return "growth limit";
-    case R::initial: return "dt_init";
-    case R::maximum: return "dt_max";
-    case R::retry: return "retry after a tangled step";
-    case R::landing: return "landing on an output or end time";
+    case R::cfl:
+      return "cfl/volume limit of zone " + std::to_string(impl_->dt_zone);
+    case R::growth:
+      return "growth limit";
+    case R::initial:
+      return "dt_init";
+    case R::maximum:
+      return "dt_max";
+    case R::retry:
+      return "retry after a tangled step";
+    case R::landing:
+      return "landing on an output or end time";
   }
   return "";
 }
 
-const Problem& Simulation::problem() const { return impl_->problem; }
-const Mesh& Simulation::mesh() const { return impl_->mesh(); }
+const Problem& Simulation::problem() const {
+  return impl_->problem;
+}
+const Mesh& Simulation::mesh() const {
+  return impl_->mesh();
+}
 
-std::span<const double> Simulation::x() const { return impl_->x; }
-std::span<const double> Simulation::y() const { return impl_->y; }
-std::span<const double> Simulation::velocity_x() const { return impl_->vx; }
-std::span<const double> Simulation::velocity_y() const { return impl_->vy; }
-std::span<const double> Simulation::point_mass() const { return impl_->point_mass; }
-std::span<const double> Simulation::zone_mass() const { return impl_->zone_mass; }
-std::span<const double> Simulation::zone_area() const { return impl_->area; }
-std::span<const double> Simulation::density() const { return impl_->rho; }
-std::span<const double> Simulation::pressure() const { return impl_->p; }
-std::span<const double> Simulation::specific_internal_energy() const { return impl_->e; }
-std::span<const double> Simulation::artificial_viscosity() const { return impl_->q; }
-std::span<const double> Simulation::sound_speed() const { return impl_->c; }
-bool Simulation::has_strength() const { return impl_->any_strength; }
-std::span<const double> Simulation::stress_xx() const { return impl_->sxx; }
-std::span<const double> Simulation::stress_yy() const { return impl_->syy; }
-std::span<const double> Simulation::stress_xy() const { return impl_->sxy; }
-std::span<const double> Simulation::plastic_strain() const { return impl_->plastic; }
-bool Simulation::has_burn() const { return impl_->any_burn; }
-std::span<const double> Simulation::burn_fraction() const { return impl_->burn; }
+std::span<const double> Simulation::x() const {
+  return impl_->x;
+}
+std::span<const double> Simulation::y() const {
+  return impl_->y;
+}
+std::span<const double> Simulation::velocity_x() const {
+  return impl_->vx;
+}
+std::span<const double> Simulation::velocity_y() const {
+  return impl_->vy;
+}
+std::span<const double> Simulation::point_mass() const {
+  return impl_->point_mass;
+}
+std::span<const double> Simulation::zone_mass() const {
+  return impl_->zone_mass;
+}
+std::span<const double> Simulation::zone_area() const {
+  return impl_->area;
+}
+std::span<const double> Simulation::density() const {
+  return impl_->rho;
+}
+std::span<const double> Simulation::pressure() const {
+  return impl_->p;
+}
+std::span<const double> Simulation::specific_internal_energy() const {
+  return impl_->e;
+}
+std::span<const double> Simulation::artificial_viscosity() const {
+  return impl_->q;
+}
+std::span<const double> Simulation::sound_speed() const {
+  return impl_->c;
+}
+bool Simulation::has_strength() const {
+  return impl_->any_strength;
+}
+std::span<const double> Simulation::stress_xx() const {
+  return impl_->sxx;
+}
+std::span<const double> Simulation::stress_yy() const {
+  return impl_->syy;
+}
+std::span<const double> Simulation::stress_xy() const {
+  return impl_->sxy;
+}
+std::span<const double> Simulation::plastic_strain() const {
+  return impl_->plastic;
+}
+bool Simulation::has_burn() const {
+  return impl_->any_burn;
+}
+std::span<const double> Simulation::burn_fraction() const {
+  return impl_->burn;
+}
 
 EnergyAudit Simulation::energy() const {
   EnergyAudit a;
@@ -97,7 +155,9 @@ std::array<double, 2> Simulation::momentum() const {
   return m;
 }
 
-void Simulation::set_remap(std::shared_ptr<Remap> remap) { impl_->remap = std::move(remap); }
+void Simulation::set_remap(std::shared_ptr<Remap> remap) {
+  impl_->remap = std::move(remap);
+}
 
 void Simulation::set_observer(std::function<void(const Simulation&)> observer) {
   impl_->observer = std::move(observer);
@@ -107,8 +167,8 @@ std::vector<Simulation::OutputField> Simulation::output_fields() const {
   std::vector<OutputField> fields;
   for (const StateField& f : state_fields()) {
     if (!(f.flags & kDumped) || !present(*impl_, f.presence)) continue;
-    fields.push_back({f.output_name, f.entity == Entity::point, f.presence == Presence::always, f.output_role,
-                      (*impl_).*f.member});
+    fields.push_back(
+        {f.output_name, f.entity == Entity::point, f.presence == Presence::always, f.output_role, (*impl_).*f.member});
   }
   return fields;
 }

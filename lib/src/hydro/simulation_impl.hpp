@@ -23,8 +23,8 @@ struct ZoneRange {
 // A point with one or two velocity constraints n_i . v = g_i(t) (docs/algorithm.md §10).
 struct PointConstraint {
   Index point = 0;
-  int count = 0;                       // 1 or 2 independent normals
-  std::array<double, 2> nx{}, ny{};    // unit normals
+  int count = 0;                           // 1 or 2 independent normals
+  std::array<double, 2> nx{}, ny{};        // unit normals
   std::array<int, 2> velocity_bc{-1, -1};  // index into velocity boundaries, -1 = wall (g = 0)
 };
 
@@ -82,14 +82,14 @@ struct Simulation::Impl {
   std::vector<int> velocity_bcs;  // Problem::boundaries indices of velocity BCs
   std::vector<std::vector<Index>> periodic_groups;
   std::vector<PressureEdge> pressure_edges;
-  std::vector<Index> external_points;          // points with external forces (pressure, sources)
-  std::vector<double> ext_fx, ext_fy;          // applied-pressure force per point (when used)
-  std::vector<double> src_fx, src_fy;          // momentum-source force per point (when used)
-  std::vector<double> corner_scratch;          // corner areas for the momentum source
-  std::vector<double> source_energy;           // energy added by the energy source this step, per zone
+  std::vector<Index> external_points;  // points with external forces (pressure, sources)
+  std::vector<double> ext_fx, ext_fy;  // applied-pressure force per point (when used)
+  std::vector<double> src_fx, src_fy;  // momentum-source force per point (when used)
+  std::vector<double> corner_scratch;  // corner areas for the momentum source
+  std::vector<double> source_energy;   // energy added by the energy source this step, per zone
   bool has_external = false;
-  std::vector<Index> constrained;              // points whose velocity constraints may change
-  std::vector<double> free_vx, free_vy;        // their velocity before the constraints (sized by `constrained`)
+  std::vector<Index> constrained;        // points whose velocity constraints may change
+  std::vector<double> free_vx, free_vy;  // their velocity before the constraints (sized by `constrained`)
 
   // Time and bookkeeping.
   double t = 0, dt_last = 0, dt_next = 0, dt_control_prev = 0;
@@ -111,8 +111,8 @@ struct Simulation::Impl {
   bool try_step(double dt);  // false: a zone tangled, nothing committed
   // The calls of try_step (step.cpp; docs/algorithm.md §1).
   void predict_velocity(double dt, double t_half);
-  std::int64_t zone_forces(const double* px, const double* py, double h_position, const double* qvx,
-                           const double* qvy, double dt_half, double t_eval);
+  std::int64_t zone_forces(const double* px, const double* py, double h_position, const double* qvx, const double* qvy,
+                           double dt_half, double t_eval);
   void edge_forces(const double* px, const double* py, const double* qvx, const double* qvy);
   void correct_velocity(double dt, double t_new);
   std::int64_t end_of_step(double dt, double t_new);

@@ -414,7 +414,8 @@ bool Simulation::Impl::try_step(double dt) {
 static std::string tangling_remedies(const HydroOptions& o) {
   std::vector<std::string> tips;
   if (o.hourglass != Hourglass::subzonal_triangles)
-    tips.push_back("numerics.hourglass = \"subzonal_triangles\" with hourglass_coefficient = 2 (docs/algorithm.md §18)");
+    tips.push_back(
+        "numerics.hourglass = \"subzonal_triangles\" with hourglass_coefficient = 2 (docs/algorithm.md §18)");
   else if (o.hourglass_coefficient < 2)
     tips.push_back("a larger numerics.hourglass_coefficient (2 is measured to hold a blast in a box)");
   if (o.cfl > 0.1) tips.push_back("a lower numerics.cfl");

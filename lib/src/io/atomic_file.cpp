@@ -79,7 +79,9 @@ void require_directory_of(const fs::path& path) {
   const auto target = fs::symlink_status(path, ec);
   if (fs::exists(target) && !fs::is_regular_file(target)) {
     throw Error("cannot write '" + path.string() + "': it exists and is not a regular file (" +
-                (fs::is_directory(target) ? "a directory" : fs::is_symlink(target) ? "a symbolic link" : "a device or special file") +
+                (fs::is_directory(target) ? "a directory"
+                 : fs::is_symlink(target) ? "a symbolic link"
+                                          : "a device or special file") +
                 "); choose another file name");
   }
 }
@@ -126,18 +128,21 @@ void write_through_temporary(const std::string& path, const std::function<void(c
 }  // namespace
 
 void write_file_atomically(const std::string& path, const std::string& text) {
-  write_through_temporary(path, [&](const std::string& temporary) {
-    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) {
-      throw Error("cannot write '" + path + "': " + std::strerror(errno) +
-                  "; check that the output directory is writable");
-    }
-    if (const int code = io_detail::write_all(fd, text.data(), text.size()); code != 0) {
-      ::close(fd);
-      io_detail::fail_and_remove(temporary, path, "writing", code);
-    }
-    if (::close(fd) != 0) io_detail::fail_and_remove(temporary, path, "closing", errno);
-  }, {}, false);
+  write_through_temporary(
+      path,
+      [&](const std::string& temporary) {
+        const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+        if (fd < 0) {
+          throw Error("cannot write '" + path + "': " + std::strerror(errno) +
+                      "; check that the output directory is writable");
+        }
+        if (const int code = io_detail::write_all(fd, text.data(), text.size()); code != 0) {
+          ::close(fd);
+          io_detail::fail_and_remove(temporary, path, "writing", code);
+        }
+        if (::close(fd) != 0) io_detail::fail_and_remove(temporary, path, "closing", errno);
+      },
+      {}, false);
 }
 
 void write_file_atomically(const std::string& path, const std::function<void(const std::string&)>& write,
@@ -170,8 +175,8 @@ void write_through_temporary(const std::string& path, const std::function<void(c
     bool complete = size >= static_cast<std::streamoff>(tail.size());
     if (complete) {
       in.seekg(size - static_cast<std::streamoff>(tail.size()));
-      complete = static_cast<bool>(in.read(tail.data(), static_cast<std::streamsize>(tail.size()))) &&
-                 tail == expected_tail;
+      complete =
+          static_cast<bool>(in.read(tail.data(), static_cast<std::streamsize>(tail.size()))) && tail == expected_tail;
     }
     if (!complete) {
       std::error_code ignored;

@@ -37,9 +37,13 @@ void write_zone_csv(const std::string& path, const Simulation& simulation) {
   for (std::size_t z = 0; z < nzones; ++z) {
     const Index begin = mesh.zone_corner_begin[z];
     const int n = static_cast<int>(mesh.zone_corner_begin[z + 1] - begin);
-    const auto point = [&](int k) { return static_cast<std::size_t>(mesh.corner_point[static_cast<std::size_t>(begin + k)]); };
-    const auto centre = polygon_centre(n, [&](int k) { return x[point(k)]; }, [&](int k) { return y[point(k)]; });
-    const auto velocity = polygon_centre(n, [&](int k) { return vx[point(k)]; }, [&](int k) { return vy[point(k)]; });
+    const auto point = [&](int k) {
+      return static_cast<std::size_t>(mesh.corner_point[static_cast<std::size_t>(begin + k)]);
+    };
+    const auto centre = polygon_centre(
+        n, [&](int k) { return x[point(k)]; }, [&](int k) { return y[point(k)]; });
+    const auto velocity = polygon_centre(
+        n, [&](int k) { return vx[point(k)]; }, [&](int k) { return vy[point(k)]; });
     cx[z] = centre[0];
     cy[z] = centre[1];
     ux[z] = velocity[0];
@@ -67,7 +71,8 @@ void write_zone_csv(const std::string& path, const Simulation& simulation) {
     columns.push_back({"deviatoric_stress_yy", syy});
     columns.push_back({"deviatoric_stress_xy", sxy});
     columns.push_back({"von_mises", von_mises});
-    if (simulation.plastic_strain().size() == nzones) columns.push_back({"plastic_strain", simulation.plastic_strain()});
+    if (simulation.plastic_strain().size() == nzones)
+      columns.push_back({"plastic_strain", simulation.plastic_strain()});
   }
   if (simulation.has_burn() && simulation.burn_fraction().size() == nzones)
     columns.push_back({"burn_fraction", simulation.burn_fraction()});

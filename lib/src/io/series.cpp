@@ -25,9 +25,10 @@ void PvdWriter::mark_last_good_state(const std::string& why) {
 
 void PvdWriter::write() const {
   // ParaView's Collection format (VTK has no writer for it): one DataSet per dump.
-  std::string text = "<?xml version=\"1.0\"?>\n"
-                     "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-                     "  <Collection>\n";
+  std::string text =
+      "<?xml version=\"1.0\"?>\n"
+      "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      "  <Collection>\n";
   for (const auto& [t, file] : entries_) {
     text += "    <DataSet timestep=\"" + io_detail::format_double(t) + "\" group=\"\" part=\"0\" file=\"" +
             io_detail::xml_attribute(file) + "\"/>\n";
@@ -53,15 +54,16 @@ void HistoryWriter::record(const Simulation& simulation) {
   using io_detail::format_double;
   rows_ += format_double(simulation.time());
   rows_ += ',' + std::to_string(simulation.cycle());
-  for (const double value : {simulation.dt(), energy.kinetic, energy.internal, energy.boundary_work,
-                             energy.source_work, energy.total, energy.relative_error, momentum[0],
-                             momentum[1]}) {
+  for (const double value : {simulation.dt(), energy.kinetic, energy.internal, energy.boundary_work, energy.source_work,
+                             energy.total, energy.relative_error, momentum[0], momentum[1]}) {
     rows_ += ',';
     rows_ += format_double(value);
   }
   rows_ += '\n';
 }
 
-void HistoryWriter::flush() const { write_file_atomically(path_, rows_); }
+void HistoryWriter::flush() const {
+  write_file_atomically(path_, rows_);
+}
 
 }  // namespace stagger

@@ -12,8 +12,8 @@ std::string named_values_object(const NamedValues& values, const std::string& in
   if (values.empty()) return "{}";
   std::string text = "{\n";
   for (std::size_t i = 0; i < values.size(); ++i) {
-    text += indent + "  " + io_detail::json_string(values[i].first) + ": " +
-            io_detail::json_number(values[i].second) + (i + 1 < values.size() ? ",\n" : "\n");
+    text += indent + "  " + io_detail::json_string(values[i].first) + ": " + io_detail::json_number(values[i].second) +
+            (i + 1 < values.size() ? ",\n" : "\n");
   }
   return text + indent + "}";
 }

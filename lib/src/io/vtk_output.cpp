@@ -90,7 +90,8 @@ void write_grid(vtkUnstructuredGrid* grid, const std::string& path) {
   if (writer->Write() != 1 || writer->GetErrorCode() != 0) {
     std::error_code ignored;
     std::filesystem::remove(temporary, ignored);
-    throw Error("cannot write '" + path + "': the VTK writer failed; check that the output directory is writable "
+    throw Error("cannot write '" + path +
+                "': the VTK writer failed; check that the output directory is writable "
                 "and the disk is not full");
   }
   io_detail::replace_file(temporary, target);

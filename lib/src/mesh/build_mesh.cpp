@@ -21,8 +21,8 @@ namespace {
 std::string point_text(const PolygonSoup& soup, std::int64_t p) {
   std::ostringstream s;
   s.precision(12);
-  s << "point " << p << " (" << soup.x[static_cast<std::size_t>(p)] << ", "
-    << soup.y[static_cast<std::size_t>(p)] << ")";
+  s << "point " << p << " (" << soup.x[static_cast<std::size_t>(p)] << ", " << soup.y[static_cast<std::size_t>(p)]
+    << ")";
   return s.str();
 }
 
@@ -35,33 +35,27 @@ std::string zone_points_text(const PolygonSoup& soup, std::size_t f) {
 
 /// Sign of the turn a -> b -> c (twice the signed triangle area).
 double orient(const PolygonSoup& s, std::int64_t a, std::int64_t b, std::int64_t c) {
-  const auto A = static_cast<std::size_t>(a), B = static_cast<std::size_t>(b),
-             C = static_cast<std::size_t>(c);
+  const auto A = static_cast<std::size_t>(a), B = static_cast<std::size_t>(b), C = static_cast<std::size_t>(c);
   return (s.x[B] - s.x[A]) * (s.y[C] - s.y[A]) - (s.y[B] - s.y[A]) * (s.x[C] - s.x[A]);
 }
 
 bool on_segment(const PolygonSoup& s, std::int64_t a, std::int64_t b, std::int64_t p) {
-  const auto A = static_cast<std::size_t>(a), B = static_cast<std::size_t>(b),
-             P = static_cast<std::size_t>(p);
+  const auto A = static_cast<std::size_t>(a), B = static_cast<std::size_t>(b), P = static_cast<std::size_t>(p);
   return std::min(s.x[A], s.x[B]) <= s.x[P] && s.x[P] <= std::max(s.x[A], s.x[B]) &&
          std::min(s.y[A], s.y[B]) <= s.y[P] && s.y[P] <= std::max(s.y[A], s.y[B]);
 }
 
 /// Open segments (a,b) and (c,d) cross at one interior point of both.
-bool segments_cross(const PolygonSoup& s, std::int64_t a, std::int64_t b, std::int64_t c,
-                    std::int64_t d) {
+bool segments_cross(const PolygonSoup& s, std::int64_t a, std::int64_t b, std::int64_t c, std::int64_t d) {
   const double o1 = orient(s, a, b, c), o2 = orient(s, a, b, d);
   const double o3 = orient(s, c, d, a), o4 = orient(s, c, d, b);
   return ((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0));
 }
 
 /// Closed segments [a,b] and [c,d] touch (an end point of one lies on the other).
-bool segments_touch(const PolygonSoup& s, std::int64_t a, std::int64_t b, std::int64_t c,
-                    std::int64_t d) {
-  return (orient(s, a, b, c) == 0 && on_segment(s, a, b, c)) ||
-         (orient(s, a, b, d) == 0 && on_segment(s, a, b, d)) ||
-         (orient(s, c, d, a) == 0 && on_segment(s, c, d, a)) ||
-         (orient(s, c, d, b) == 0 && on_segment(s, c, d, b));
+bool segments_touch(const PolygonSoup& s, std::int64_t a, std::int64_t b, std::int64_t c, std::int64_t d) {
+  return (orient(s, a, b, c) == 0 && on_segment(s, a, b, c)) || (orient(s, a, b, d) == 0 && on_segment(s, a, b, d)) ||
+         (orient(s, c, d, a) == 0 && on_segment(s, c, d, a)) || (orient(s, c, d, b) == 0 && on_segment(s, c, d, b));
 }
 
 std::uint64_t edge_key(Index a, Index b) {
@@ -74,24 +68,23 @@ std::uint64_t edge_key(Index a, Index b) {
 /// (missing names filled in as "region_<i>").
 std::vector<std::string> check_structure(const PolygonSoup& soup) {
   const std::string& src = soup.source;
-  if (soup.x.size() != soup.y.size())
-    throw Error("polygon soup " + src + ": x and y have different sizes");
+  if (soup.x.size() != soup.y.size()) throw Error("polygon soup " + src + ": x and y have different sizes");
   if (soup.polygon_begin.empty() || soup.polygon_begin.front() != 0 ||
       soup.polygon_begin.back() != static_cast<std::int64_t>(soup.polygon_points.size()))
-    throw Error("polygon soup " + src + ": polygon_begin must start at 0 and end at the size "
+    throw Error("polygon soup " + src +
+                ": polygon_begin must start at 0 and end at the size "
                 "of polygon_points");
   const std::size_t npoly = soup.num_polygons();
   if (npoly == 0) throw Error("empty mesh: " + src + " has no zones");
   // Offsets must not decrease, or a zone would reach past polygon_points (found by fuzzing).
   for (std::size_t f = 0; f < npoly; ++f)
     if (soup.polygon_begin[f + 1] < soup.polygon_begin[f])
-      throw Error("polygon soup " + src + ": polygon_begin decreases at zone " + std::to_string(f) +
-                  " (" + std::to_string(soup.polygon_begin[f]) + " then " +
-                  std::to_string(soup.polygon_begin[f + 1]) + "); offsets must be non-decreasing");
+      throw Error("polygon soup " + src + ": polygon_begin decreases at zone " + std::to_string(f) + " (" +
+                  std::to_string(soup.polygon_begin[f]) + " then " + std::to_string(soup.polygon_begin[f + 1]) +
+                  "); offsets must be non-decreasing");
   if (!soup.polygon_region.empty() && soup.polygon_region.size() != npoly)
-    throw Error("polygon soup " + src + ": polygon_region has " +
-                std::to_string(soup.polygon_region.size()) + " entries for " +
-                std::to_string(npoly) + " zones");
+    throw Error("polygon soup " + src + ": polygon_region has " + std::to_string(soup.polygon_region.size()) +
+                " entries for " + std::to_string(npoly) + " zones");
   if (soup.x.size() > static_cast<std::size_t>(std::numeric_limits<Index>::max()) ||
       soup.polygon_points.size() > static_cast<std::size_t>(std::numeric_limits<Index>::max()))
     throw Error("mesh " + src + " is too large for 32-bit indices");
@@ -103,34 +96,32 @@ std::vector<std::string> check_structure(const PolygonSoup& soup) {
   for (std::size_t f = 0; f < npoly; ++f) {
     const auto begin = soup.polygon_begin[f], end = soup.polygon_begin[f + 1];
     if (end - begin < 3)
-      throw Error("zone " + std::to_string(f) + " of " + src + " has " +
-                  std::to_string(end - begin) + " points; a zone needs at least 3");
+      throw Error("zone " + std::to_string(f) + " of " + src + " has " + std::to_string(end - begin) +
+                  " points; a zone needs at least 3");
     for (auto k = begin; k < end; ++k) {
       const auto p = soup.polygon_points[k];
       if (p < 0 || p >= npoints)
-        throw Error("zone " + std::to_string(f) + " of " + src + " refers to point " +
-                    std::to_string(p) + ", but there are " + std::to_string(npoints) + " points");
+        throw Error("zone " + std::to_string(f) + " of " + src + " refers to point " + std::to_string(p) +
+                    ", but there are " + std::to_string(npoints) + " points");
       for (auto l = begin; l < k; ++l)
         if (soup.polygon_points[l] == p)
-          throw Error("zone " + std::to_string(f) + " of " + src + " uses " +
-                      point_text(soup, p) + " twice; remove the repeated corner");
+          throw Error("zone " + std::to_string(f) + " of " + src + " uses " + point_text(soup, p) +
+                      " twice; remove the repeated corner");
     }
     const int region = soup.polygon_region.empty() ? 0 : soup.polygon_region[f];
     if (region < 0)
-      throw Error("zone " + std::to_string(f) + " of " + src + " has negative region " +
-                  std::to_string(region));
+      throw Error("zone " + std::to_string(f) + " of " + src + " has negative region " + std::to_string(region));
     // Unnamed regions are allowed (named region_<i>), but an index far beyond the names
     // and the zone count is corruption, and would allocate that many names.
     const std::size_t region_limit = soup.region_names.size() + npoly;
     if (static_cast<std::size_t>(region) >= region_limit)
-      throw Error("zone " + std::to_string(f) + " of " + src + " has region index " +
-                  std::to_string(region) + ", beyond the " + std::to_string(soup.region_names.size()) +
-                  " region names and " + std::to_string(npoly) + " zones; check polygon_region");
+      throw Error("zone " + std::to_string(f) + " of " + src + " has region index " + std::to_string(region) +
+                  ", beyond the " + std::to_string(soup.region_names.size()) + " region names and " +
+                  std::to_string(npoly) + " zones; check polygon_region");
     max_region = std::max(max_region, region);
   }
   std::vector<std::string> names = soup.region_names;
-  for (int r = static_cast<int>(names.size()); r <= max_region; ++r)
-    names.push_back("region_" + std::to_string(r));
+  for (int r = static_cast<int>(names.size()); r <= max_region; ++r) names.push_back("region_" + std::to_string(r));
   return names;
 }
 
@@ -145,8 +136,8 @@ void check_duplicates(const PolygonSoup& soup, const std::vector<std::int64_t>& 
     ymin = std::min(ymin, soup.y[i]);
     ymax = std::max(ymax, soup.y[i]);
   }
-  const double tol = 1e-12 * std::max({xmax - xmin, ymax - ymin, std::abs(xmax), std::abs(xmin),
-                                       std::abs(ymax), std::abs(ymin)});
+  const double tol =
+      1e-12 * std::max({xmax - xmin, ymax - ymin, std::abs(xmax), std::abs(xmin), std::abs(ymax), std::abs(ymin)});
   std::vector<std::int64_t> order = used;
   std::sort(order.begin(), order.end(), [&](std::int64_t a, std::int64_t b) {
     return soup.x[static_cast<std::size_t>(a)] < soup.x[static_cast<std::size_t>(b)];
@@ -179,8 +170,8 @@ void check_zone_geometry(const PolygonSoup& soup) {
         for (std::int64_t j = i + 2; j < n; ++j) {
           if (i == 0 && j == n - 1) continue;  // adjacent through the closing corner
           if (meets(soup, pt(i), pt(i + 1), pt(j), pt(j + 1)))
-            return std::to_string(pt(i)) + "-" + std::to_string(pt(i + 1)) + " and " +
-                   std::to_string(pt(j)) + "-" + std::to_string(pt(j + 1));
+            return std::to_string(pt(i)) + "-" + std::to_string(pt(i + 1)) + " and " + std::to_string(pt(j)) + "-" +
+                   std::to_string(pt(j + 1));
         }
       return {};
     };
@@ -203,8 +194,8 @@ void check_zone_geometry(const PolygonSoup& soup) {
       throw Error(zone + " is so large that its area overflows (coordinates of magnitude near 1e308): " +
                   zone_points_text(soup, f) + "; rescale the mesh");
     if (!(std::abs(0.5 * twice_area) > 1e-12 * longest2))
-      throw Error(zone + " has zero area (its points are collinear or it folds onto itself): " +
-                  zone_points_text(soup, f));
+      throw Error(zone +
+                  " has zero area (its points are collinear or it folds onto itself): " + zone_points_text(soup, f));
     if (const std::string edges = find_pair(segments_touch); !edges.empty())
       throw Error(zone + " touches itself: its edges " + edges +
                   " meet; split it into simple polygons: " + zone_points_text(soup, f));
@@ -279,8 +270,10 @@ void check_overlaps(const Mesh& mesh, const std::vector<std::size_t>& polygon_of
         for (std::int64_t j = b.j0; j <= b.j1; ++j)
           for (std::int64_t i = b.i0; i <= b.i1; ++i) {
             const auto cell = static_cast<std::size_t>(j * nx + i);
-            if (pass == 0) ++begin[cell + 1];
-            else items[static_cast<std::size_t>(fill[cell]++)] = static_cast<Index>(item);
+            if (pass == 0)
+              ++begin[cell + 1];
+            else
+              items[static_cast<std::size_t>(fill[cell]++)] = static_cast<Index>(item);
           }
       }
     }
@@ -291,7 +284,9 @@ void check_overlaps(const Mesh& mesh, const std::vector<std::size_t>& polygon_of
     t << "point " << soup_point[static_cast<std::size_t>(p)] << " (" << mesh.x[p] << ", " << mesh.y[p] << ")";
     return t.str();
   };
-  const auto zone_text = [&](Index z) { return "zone " + std::to_string(polygon_of_zone[static_cast<std::size_t>(z)]); };
+  const auto zone_text = [&](Index z) {
+    return "zone " + std::to_string(polygon_of_zone[static_cast<std::size_t>(z)]);
+  };
   const auto edge_text = [&](Index k) {
     return "edge " + std::to_string(soup_point[static_cast<std::size_t>(mesh.corner_point[k])]) + "-" +
            std::to_string(soup_point[static_cast<std::size_t>(mesh.corner_point[next_corner(k)])]) + " of " +
@@ -308,11 +303,14 @@ void check_overlaps(const Mesh& mesh, const std::vector<std::size_t>& polygon_of
 
   std::vector<std::int64_t> begin;
   std::vector<Index> items;
-  buckets(side.size(), [&](std::size_t s) {
-    const Index a = mesh.corner_point[side[s]], b = mesh.corner_point[next_corner(side[s])];
-    return Box{cell_x(std::min(mesh.x[a], mesh.x[b])), cell_x(std::max(mesh.x[a], mesh.x[b])),
-               cell_y(std::min(mesh.y[a], mesh.y[b])), cell_y(std::max(mesh.y[a], mesh.y[b]))};
-  }, begin, items);
+  buckets(
+      side.size(),
+      [&](std::size_t s) {
+        const Index a = mesh.corner_point[side[s]], b = mesh.corner_point[next_corner(side[s])];
+        return Box{cell_x(std::min(mesh.x[a], mesh.x[b])), cell_x(std::max(mesh.x[a], mesh.x[b])),
+                   cell_y(std::min(mesh.y[a], mesh.y[b])), cell_y(std::max(mesh.y[a], mesh.y[b]))};
+      },
+      begin, items);
   for (std::size_t cell = 0; cell + 1 < begin.size(); ++cell)
     for (auto u = begin[cell]; u < begin[cell + 1]; ++u)
       for (auto v = u + 1; v < begin[cell + 1]; ++v) {
@@ -324,33 +322,40 @@ void check_overlaps(const Mesh& mesh, const std::vector<std::size_t>& polygon_of
         if (shared == 2) continue;
         const double o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a), o4 = orient(c, d, b);
         if (shared == 0 && ((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0)))
-          throw Error("zones overlap in " + mesh.source + ": " + edge_text(k1) + " crosses " + edge_text(k2) +
-                      " (" + point_text(a) + " to " + point_text(b) + ")" + fix);
+          throw Error("zones overlap in " + mesh.source + ": " + edge_text(k1) + " crosses " + edge_text(k2) + " (" +
+                      point_text(a) + " to " + point_text(b) + ")" + fix);
         // An end point on the other edge (not a shared corner): a hanging node or a fold.
         const auto touches = [&](Index p, double o, Index e0, Index e1) {
           return p != e0 && p != e1 && o == 0 && on_segment(e0, e1, p);
         };
         Index p = -1, k = -1;
-        if (touches(c, o1, a, b)) p = c, k = k1;
-        else if (touches(d, o2, a, b)) p = d, k = k1;
-        else if (touches(a, o3, c, d)) p = a, k = k2;
-        else if (touches(b, o4, c, d)) p = b, k = k2;
+        if (touches(c, o1, a, b))
+          p = c, k = k1;
+        else if (touches(d, o2, a, b))
+          p = d, k = k1;
+        else if (touches(a, o3, c, d))
+          p = a, k = k2;
+        else if (touches(b, o4, c, d))
+          p = b, k = k2;
         if (p >= 0)
           throw Error("zones overlap or do not connect in " + mesh.source + ": " + point_text(p) + " lies on " +
                       edge_text(k) + " but is not a corner of that zone" + fix);
       }
   // Containment: a point strictly inside a zone it is not a corner of.
-  buckets(static_cast<std::size_t>(nzones), [&](std::size_t z) {
-    double x0 = HUGE_VAL, x1 = -HUGE_VAL, y0 = HUGE_VAL, y1 = -HUGE_VAL;
-    for (Index k = mesh.zone_corner_begin[z]; k < mesh.zone_corner_begin[z + 1]; ++k) {
-      const Index p = mesh.corner_point[k];
-      x0 = std::min(x0, mesh.x[p]);
-      x1 = std::max(x1, mesh.x[p]);
-      y0 = std::min(y0, mesh.y[p]);
-      y1 = std::max(y1, mesh.y[p]);
-    }
-    return Box{cell_x(x0), cell_x(x1), cell_y(y0), cell_y(y1)};
-  }, begin, items);
+  buckets(
+      static_cast<std::size_t>(nzones),
+      [&](std::size_t z) {
+        double x0 = HUGE_VAL, x1 = -HUGE_VAL, y0 = HUGE_VAL, y1 = -HUGE_VAL;
+        for (Index k = mesh.zone_corner_begin[z]; k < mesh.zone_corner_begin[z + 1]; ++k) {
+          const Index p = mesh.corner_point[k];
+          x0 = std::min(x0, mesh.x[p]);
+          x1 = std::max(x1, mesh.x[p]);
+          y0 = std::min(y0, mesh.y[p]);
+          y1 = std::max(y1, mesh.y[p]);
+        }
+        return Box{cell_x(x0), cell_x(x1), cell_y(y0), cell_y(y1)};
+      },
+      begin, items);
   for (Index p = 0; p < mesh.num_points(); ++p) {
     const auto cell = static_cast<std::size_t>(cell_y(mesh.y[p]) * nx + cell_x(mesh.x[p]));
     for (auto u = begin[cell]; u < begin[cell + 1]; ++u) {
@@ -382,16 +387,13 @@ void check_overlaps(const Mesh& mesh, const std::vector<std::size_t>& polygon_of
 
 }  // namespace
 
-Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options,
-                MeshBuildReport* report) {
+Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options, MeshBuildReport* report) {
   MeshBuildReport local_report;
   MeshBuildReport& rep = report ? *report : local_report;
   rep = MeshBuildReport{};
   const std::vector<std::string> region_names = check_structure(soup);
   const std::size_t npoly = soup.num_polygons();
-  const auto region_of = [&](std::size_t f) {
-    return soup.polygon_region.empty() ? 0 : soup.polygon_region[f];
-  };
+  const auto region_of = [&](std::size_t f) { return soup.polygon_region.empty() ? 0 : soup.polygon_region[f]; };
 
   for (const auto& note : soup.notes) rep.notes.push_back(note);
   if (options.quads_only && soup.unassigned_elements > 0)
@@ -404,9 +406,9 @@ Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options,
         if (non_quads++ == 0) first = f;
       }
     if (non_quads > 0)
-      throw Error("quads only: " + std::to_string(non_quads) + " of " + std::to_string(npoly) +
-                  " zones of " + soup.source + " are not quadrilaterals (first: zone " +
-                  std::to_string(first) + ": " + zone_points_text(soup, first) +
+      throw Error("quads only: " + std::to_string(non_quads) + " of " + std::to_string(npoly) + " zones of " +
+                  soup.source + " are not quadrilaterals (first: zone " + std::to_string(first) + ": " +
+                  zone_points_text(soup, first) +
                   "); use the triangle policy 'subdivide' (scene: triangles = \"subdivide\"; "
                   "stagger mesh --triangles subdivide) or allow mixed zones");
   }
@@ -423,8 +425,7 @@ Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options,
     }
   rep.dropped_points = static_cast<int>(nsoup_points - used.size());
   if (rep.dropped_points > 0)
-    rep.notes.push_back(std::to_string(rep.dropped_points) +
-                        " points used by no zone were dropped");
+    rep.notes.push_back(std::to_string(rep.dropped_points) + " points used by no zone were dropped");
 
   check_duplicates(soup, used);
   check_zone_geometry(soup);
@@ -451,8 +452,9 @@ Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options,
     for (std::size_t f = 0; f < npoly; ++f) {
       const auto begin = soup.polygon_begin[f];
       const auto point = [&](int k) { return static_cast<std::size_t>(cpoints[static_cast<std::size_t>(begin + k)]); };
-      const double twice = polygon_twice_area(static_cast<int>(soup.polygon_begin[f + 1] - begin),
-                                              [&](int k) { return cx[point(k)]; }, [&](int k) { return cy[point(k)]; });
+      const double twice = polygon_twice_area(
+          static_cast<int>(soup.polygon_begin[f + 1] - begin), [&](int k) { return cx[point(k)]; },
+          [&](int k) { return cy[point(k)]; });
       topo.reversed[f] = twice < 0 ? 1 : 0;
     }
     // All clockwise is a mirror image; some clockwise is a fold, not something to repair.
@@ -537,15 +539,13 @@ Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options,
   std::unordered_set<std::uint64_t> tagged;
   for (const TaggedEdge& e : soup.tagged_edges) {
     if (e.tag < 0 || static_cast<std::size_t>(e.tag) >= soup.tag_names.size())
-      throw Error("tagged edge " + std::to_string(e.a) + "-" + std::to_string(e.b) + " of " +
-                  soup.source + " has tag index " + std::to_string(e.tag) + ", but there are " +
+      throw Error("tagged edge " + std::to_string(e.a) + "-" + std::to_string(e.b) + " of " + soup.source +
+                  " has tag index " + std::to_string(e.tag) + ", but there are " +
                   std::to_string(soup.tag_names.size()) + " tag names");
-    const std::string what = "edge " + std::to_string(e.a) + "-" + std::to_string(e.b) +
-                             " of tag '" + soup.tag_names[static_cast<std::size_t>(e.tag)] +
-                             "' in " + soup.source;
+    const std::string what = "edge " + std::to_string(e.a) + "-" + std::to_string(e.b) + " of tag '" +
+                             soup.tag_names[static_cast<std::size_t>(e.tag)] + "' in " + soup.source;
     const auto in_range = [&](std::int64_t p) {
-      return p >= 0 && static_cast<std::size_t>(p) < nsoup_points &&
-             compact[static_cast<std::size_t>(p)] >= 0;
+      return p >= 0 && static_cast<std::size_t>(p) < nsoup_points && compact[static_cast<std::size_t>(p)] >= 0;
     };
     if (!in_range(e.a) || !in_range(e.b))
       throw Error(what + " is not an edge of the mesh (an end point is used by no zone)");
@@ -563,8 +563,8 @@ Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options,
       }
     }
     if (oriented[0] < 0)
-      throw Error(what + " is not an edge of the mesh: " + point_text(soup, e.a) + " and " +
-                  point_text(soup, e.b) + " are not consecutive corners of any zone");
+      throw Error(what + " is not an edge of the mesh: " + point_text(soup, e.a) + " and " + point_text(soup, e.b) +
+                  " are not consecutive corners of any zone");
     if (!seen[static_cast<std::size_t>(e.tag)].insert(edge_key(a, b)).second) continue;
     tagged.insert(edge_key(a, b));
     BoundaryTag& tag = mesh.tags[static_cast<std::size_t>(e.tag)];
@@ -590,11 +590,10 @@ Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options,
   }
   if (options.check_topology)
     rep.notes.push_back(std::to_string(topo.boundary_loops.size()) + " boundary loop(s), " +
-                      std::to_string(boundary_edges) + " boundary edges, " +
-                      std::to_string(untagged) + " of them untagged");
+                        std::to_string(boundary_edges) + " boundary edges, " + std::to_string(untagged) +
+                        " of them untagged");
   if (topo.flipped_components > 0)
-    rep.notes.push_back(std::to_string(topo.flipped_components) + " of " +
-                        std::to_string(topo.components) +
+    rep.notes.push_back(std::to_string(topo.flipped_components) + " of " + std::to_string(topo.components) +
                         " connected component(s) were clockwise as a whole and were flipped");
   return mesh;
 }

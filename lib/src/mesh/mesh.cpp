@@ -39,15 +39,17 @@ int Mesh::tag_index(const std::string& name) const {
 double zone_area(const Mesh& mesh, Index z) {
   const Index begin = mesh.zone_corner_begin[z];
   const int n = static_cast<int>(mesh.zone_corner_begin[z + 1] - begin);
-  return polygon_area(n, [&](int k) { return mesh.x[mesh.corner_point[begin + k]]; },
-                      [&](int k) { return mesh.y[mesh.corner_point[begin + k]]; });
+  return polygon_area(
+      n, [&](int k) { return mesh.x[mesh.corner_point[begin + k]]; },
+      [&](int k) { return mesh.y[mesh.corner_point[begin + k]]; });
 }
 
 std::array<double, 2> zone_centre(const Mesh& mesh, Index z) {
   const Index begin = mesh.zone_corner_begin[z];
   const int n = static_cast<int>(mesh.zone_corner_begin[z + 1] - begin);
-  return polygon_centre(n, [&](int k) { return mesh.x[mesh.corner_point[begin + k]]; },
-                        [&](int k) { return mesh.y[mesh.corner_point[begin + k]]; });
+  return polygon_centre(
+      n, [&](int k) { return mesh.x[mesh.corner_point[begin + k]]; },
+      [&](int k) { return mesh.y[mesh.corner_point[begin + k]]; });
 }
 
 MeshQuality mesh_quality(const Mesh& mesh) {
@@ -59,9 +61,12 @@ MeshQuality mesh_quality(const Mesh& mesh) {
   for (Index z = 0; z < mesh.num_zones(); ++z) {
     const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
     const Index n = end - begin;
-    if (n == 3) ++q.triangles;
-    else if (n == 4) ++q.quads;
-    else ++q.other_polygons;
+    if (n == 3)
+      ++q.triangles;
+    else if (n == 4)
+      ++q.quads;
+    else
+      ++q.other_polygons;
     const double area = zone_area(mesh, z);
     q.min_area = std::min(q.min_area, area);
     q.max_area = std::max(q.max_area, area);

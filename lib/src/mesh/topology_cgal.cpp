@@ -71,8 +71,9 @@ std::string point_text(const TopologyInput& in, std::size_t p) {
 
 /// Shoelace formula: twice the signed area, positive for counter-clockwise.
 double twice_signed_area(const TopologyInput& in, const Polygon& polygon) {
-  return polygon_twice_area(static_cast<int>(polygon.size()), [&](int k) { return in.x[polygon[k]]; },
-                            [&](int k) { return in.y[polygon[k]]; });
+  return polygon_twice_area(
+      static_cast<int>(polygon.size()), [&](int k) { return in.x[polygon[k]]; },
+      [&](int k) { return in.y[polygon[k]]; });
 }
 
 }  // namespace
@@ -98,14 +99,13 @@ TopologyResult orient_and_check_topology(const TopologyInput& in) {
   const bool oriented =
       PMP::orient_polygon_soup(points, polygons, CGAL::parameters::visitor(RecordingVisitor(&record)));
   if (record.has_edge) {
-    throw Error("non-manifold edge between " + point_text(in, record.edge_a) + " and " +
-                point_text(in, record.edge_b) + " in " + in.source + ": it is shared by " +
-                std::to_string(record.edge_count) +
+    throw Error("non-manifold edge between " + point_text(in, record.edge_a) + " and " + point_text(in, record.edge_b) +
+                " in " + in.source + ": it is shared by " + std::to_string(record.edge_count) +
                 " zones (at most 2 allowed); remove the overlapping or duplicated zones");
   }
   if (record.has_vertex) {
-    throw Error("non-manifold " + point_text(in, record.vertex) + " in " + in.source +
-                ": its zones form " + std::to_string(record.vertex_fans) +
+    throw Error("non-manifold " + point_text(in, record.vertex) + " in " + in.source + ": its zones form " +
+                std::to_string(record.vertex_fans) +
                 " fans that touch only at this point; zones must connect through edges "
                 "(merge the meshes along an edge or split the point)");
   }
@@ -119,24 +119,21 @@ TopologyResult orient_and_check_topology(const TopologyInput& in) {
   SurfaceMesh mesh;
   PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
   if (mesh.number_of_vertices() != npoints || mesh.number_of_faces() != npoly) {
-    throw Error("internal: CGAL mesh of " + in.source + " has " +
-                std::to_string(mesh.number_of_vertices()) + " vertices and " +
-                std::to_string(mesh.number_of_faces()) + " faces, expected " +
+    throw Error("internal: CGAL mesh of " + in.source + " has " + std::to_string(mesh.number_of_vertices()) +
+                " vertices and " + std::to_string(mesh.number_of_faces()) + " faces, expected " +
                 std::to_string(npoints) + " and " + std::to_string(npoly));
   }
 
   // 3. Counter-clockwise per connected component: orient_polygon_soup only makes the
   //    orientation consistent, so flip a component whose total signed area is negative.
-  auto component =
-      mesh.add_property_map<SurfaceMesh::Face_index, std::size_t>("f:component", 0).first;
+  auto component = mesh.add_property_map<SurfaceMesh::Face_index, std::size_t>("f:component", 0).first;
   const std::size_t ncomponents = PMP::connected_components(mesh, component);
   result.components = static_cast<int>(ncomponents);
   std::vector<double> component_area(ncomponents, 0.0);
   std::vector<double> polygon_area(npoly);
   for (std::size_t f = 0; f < npoly; ++f) {
     polygon_area[f] = twice_signed_area(in, polygons[f]);
-    component_area[component[SurfaceMesh::Face_index(static_cast<SurfaceMesh::size_type>(f))]] +=
-        polygon_area[f];
+    component_area[component[SurfaceMesh::Face_index(static_cast<SurfaceMesh::size_type>(f))]] += polygon_area[f];
   }
   std::vector<SurfaceMesh::Face_index> to_flip;
   for (std::size_t f = 0; f < npoly; ++f) {

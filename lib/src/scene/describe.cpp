@@ -11,11 +11,16 @@ namespace {
 
 const char* kind_name(BoundaryKind kind) {
   switch (kind) {
-    case BoundaryKind::wall: return "wall (v.n = 0)";
-    case BoundaryKind::velocity: return "prescribed velocity";
-    case BoundaryKind::free: return "free (traction-free)";
-    case BoundaryKind::pressure: return "applied pressure";
-    case BoundaryKind::periodic: return "periodic";
+    case BoundaryKind::wall:
+      return "wall (v.n = 0)";
+    case BoundaryKind::velocity:
+      return "prescribed velocity";
+    case BoundaryKind::free:
+      return "free (traction-free)";
+    case BoundaryKind::pressure:
+      return "applied pressure";
+    case BoundaryKind::periodic:
+      return "periodic";
   }
   return "?";
 }
@@ -118,7 +123,8 @@ std::string describe(const Scene& scene) {
     if (!found) out << "(none)";
     out << "\n";
   }
-  for (const auto& deposit : problem.deposits) out << "energy deposit: " << deposit_option_table().echo(deposit) << "\n";
+  for (const auto& deposit : problem.deposits)
+    out << "energy deposit: " << deposit_option_table().echo(deposit) << "\n";
   if (problem.sources) out << "manufactured source terms: on\n";
 
   out << "numerics\n" << echo_lines(numerics_option_table().echo(options));

@@ -14,7 +14,9 @@ struct Expression::State {
 };
 
 namespace {
-double power(double base, double exponent) { return std::pow(base, exponent); }
+double power(double base, double exponent) {
+  return std::pow(base, exponent);
+}
 }  // namespace
 
 Expression::Expression(const std::string& text, const std::vector<std::string>& variables)
@@ -22,8 +24,7 @@ Expression::Expression(const std::string& text, const std::vector<std::string>& 
   state_->text = text;
   state_->variables.assign(variables.size(), 0.0);
   try {
-    for (std::size_t i = 0; i < variables.size(); ++i)
-      state_->parser.DefineVar(variables[i], &state_->variables[i]);
+    for (std::size_t i = 0; i < variables.size(); ++i) state_->parser.DefineVar(variables[i], &state_->variables[i]);
     state_->parser.DefineConst("pi", std::numbers::pi);
     state_->parser.DefineFun("pow", power);
     state_->parser.SetExpr(text);
@@ -45,8 +46,7 @@ double evaluate(mu::Parser& parser) {
 }  // namespace
 
 double Expression::operator()(const std::vector<double>& values) const {
-  for (std::size_t i = 0; i < values.size() && i < state_->variables.size(); ++i)
-    state_->variables[i] = values[i];
+  for (std::size_t i = 0; i < values.size() && i < state_->variables.size(); ++i) state_->variables[i] = values[i];
   return evaluate(state_->parser);
 }
 
@@ -61,7 +61,9 @@ double Expression::operator()(double a, double b) const {
   return evaluate(state_->parser);
 }
 
-const std::string& Expression::text() const { return state_->text; }
+const std::string& Expression::text() const {
+  return state_->text;
+}
 
 SpaceFunction space_function(const Expression& expression) {
   return [expression](double x, double y) { return expression(x, y); };

@@ -13,7 +13,7 @@ namespace stagger::scene_detail {
 
 /// An expression of named variables. Copies share the parser (cheap, not thread-safe).
 class Expression {
-public:
+ public:
   /// Compiles `text` over `variables` (e.g. {"x", "y"}); throws ExpressionError with
   /// muparser's message (what and where in the text) when it does not parse.
   Expression(const std::string& text, const std::vector<std::string>& variables);
@@ -23,7 +23,7 @@ public:
   double operator()(double a, double b) const;
   const std::string& text() const;
 
-private:
+ private:
   struct State;
   std::shared_ptr<State> state_;
 };

@@ -67,9 +67,10 @@ void perturb_mesh(Mesh& mesh, double fraction, std::uint64_t seed, Section& sect
   }
   for (Index z = 0; z < mesh.num_zones(); ++z)
     if (!(zone_area(mesh, z) > 0))
-      section.fail("perturb", "zone " + std::to_string(z) + " is inverted after the perturbation (seed " +
-                                  std::to_string(seed) + ")",
-                   "use a smaller perturb or another seed");
+      section.fail(
+          "perturb",
+          "zone " + std::to_string(z) + " is inverted after the perturbation (seed " + std::to_string(seed) + ")",
+          "use a smaller perturb or another seed");
 }
 
 }  // namespace
@@ -77,44 +78,45 @@ void perturb_mesh(Mesh& mesh, double fraction, std::uint64_t seed, Section& sect
 Mesh read_mesh_section(Section& section, const std::string& scene_file, std::vector<std::string>& notes) {
   const bool has_file = section.has("file"), has_generator = section.has("generator");
   if (has_file == has_generator)
-    section.fail(has_file ? "generator" : "file", has_file ? "give either file or generator, not both"
-                                                           : "missing: the mesh needs a file or a generator",
+    section.fail(has_file ? "generator" : "file",
+                 has_file ? "give either file or generator, not both" : "missing: the mesh needs a file or a generator",
                  "write file = \"shape.geo\" or generator = \"rectangle\"");
   const double refine = section.number("refine", 1.0);
   if (!(refine > 0)) section.fail("refine", "must be > 0, got " + show(refine));
   if (refine > kMaxRefine) section.fail("refine", "must be at most " + show(kMaxRefine) + ", got " + show(refine));
-  const std::vector<std::string> refined = section.has("refined") ? section.strings("refined")
-                                                                  : std::vector<std::string>{};
+  const std::vector<std::string> refined =
+      section.has("refined") ? section.strings("refined") : std::vector<std::string>{};
   const bool quads_only = section.boolean("quads_only", false);
 
   // The product is formed in double and checked before any conversion, so that no count
   // wraps around (nx = 4294967297 once ran one zone wide) or reads as negative.
   auto refined_count = [&](const std::string& key, long base) {
-    const bool listed = !section.has("refined") ||
-                        std::find(refined.begin(), refined.end(), key) != refined.end();
+    const bool listed = !section.has("refined") || std::find(refined.begin(), refined.end(), key) != refined.end();
     const double value = listed ? std::round(static_cast<double>(base) * refine) : static_cast<double>(base);
     if (value < 1)
-      section.fail(key, show(static_cast<double>(base)) + " refined by " + show(refine) + " gives " + show(value) +
-                            " zones; must be >= 1", "raise mesh.refine or the count");
+      section.fail(key,
+                   show(static_cast<double>(base)) + " refined by " + show(refine) + " gives " + show(value) +
+                       " zones; must be >= 1",
+                   "raise mesh.refine or the count");
     if (value > static_cast<double>(kMaxCount))
-      section.fail(key, show(static_cast<double>(base)) + " refined by " + show(refine) + " gives " + show(value) +
-                            " zones, above the limit of " + std::to_string(kMaxCount),
+      section.fail(key,
+                   show(static_cast<double>(base)) + " refined by " + show(refine) + " gives " + show(value) +
+                       " zones, above the limit of " + std::to_string(kMaxCount),
                    "lower mesh.refine or the count");
     return static_cast<int>(value);
   };
   auto check_zone_total = [&](const char* first, int a, const char* second, int b) {
     const double total = static_cast<double>(a) * static_cast<double>(b);
     if (total > static_cast<double>(kMaxZones))
-      section.fail(first, std::string(first) + " x " + second + " = " + std::to_string(a) + " x " + std::to_string(b) +
-                              " = " + show(total) + " zones, above the limit of " + std::to_string(kMaxZones) +
-                              " zones per mesh",
+      section.fail(first,
+                   std::string(first) + " x " + second + " = " + std::to_string(a) + " x " + std::to_string(b) + " = " +
+                       show(total) + " zones, above the limit of " + std::to_string(kMaxZones) + " zones per mesh",
                    "use fewer zones");
   };
   auto check_refined = [&](const std::vector<std::string>& allowed) {
     for (const auto& name : refined)
       if (std::find(allowed.begin(), allowed.end(), name) == allowed.end())
-        section.fail("refined", "'" + name + "' is not a parameter of this mesh",
-                     "use some of " + join(allowed));
+        section.fail("refined", "'" + name + "' is not a parameter of this mesh", "use some of " + join(allowed));
   };
 
   PolygonSoup soup;
@@ -220,8 +222,7 @@ Mesh read_mesh_section(Section& section, const std::string& scene_file, std::vec
       const double x = soup.x[p], y = soup.y[p];
       const double new_x = fx ? (*fx)(x, y) : x, new_y = fy ? (*fy)(x, y) : y;
       if (!std::isfinite(new_x) || !std::isfinite(new_y))
-        transform->fail(std::isfinite(new_x) ? "y" : "x",
-                        "not finite at the point (" + show(x) + ", " + show(y) + ")",
+        transform->fail(std::isfinite(new_x) ? "y" : "x", "not finite at the point (" + show(x) + ", " + show(y) + ")",
                         "guard the expression, e.g. with ?:");
       soup.x[p] = new_x;
       soup.y[p] = new_y;

@@ -65,8 +65,9 @@ toml::table parse_assignment(const std::string& keys, const std::string& value, 
   } catch (const toml::parse_error&) {
     // A number TOML cannot hold (an integer beyond 64 bits) is an error, not a string.
     if (looks_numeric(value))
-      fail(label, "'" + value + "' is not a valid TOML number (out of range: integers must fit in 64 bits, floats "
-                  "in a double)");
+      fail(label, "'" + value +
+                      "' is not a valid TOML number (out of range: integers must fit in 64 bits, floats "
+                      "in a double)");
     // Not a TOML value: take it as a literal string (e.g. --set numerics.viscosity=edge).
     if (value.find('\'') != std::string::npos || value.find('\n') != std::string::npos)
       fail(label, "'" + value + "' is not a TOML value; quote strings");
@@ -111,10 +112,11 @@ void apply_override(toml::table& root, const std::string& path, const std::strin
     }
     if (last) fail(label, "cannot replace a whole array element; set one of its keys");
     if (node->is_array_of_tables() && segment.indices.empty())
-      fail(label, "'" + walked + "' is an array of tables; pick one entry, e.g. " + walked + "[0]." +
-                      segments[i + 1].name);
+      fail(label,
+           "'" + walked + "' is an array of tables; pick one entry, e.g. " + walked + "[0]." + segments[i + 1].name);
     current = node->as_table();
-    if (current == nullptr) fail(label, "'" + walked + "' is not a table, so it has no key '" + segments[i + 1].name + "'");
+    if (current == nullptr)
+      fail(label, "'" + walked + "' is not a table, so it has no key '" + segments[i + 1].name + "'");
   }
 }
 

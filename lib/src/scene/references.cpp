@@ -43,7 +43,8 @@ template <class Eos>
 const Eos& material_eos(Section& section, const Material& material, const char* eos_name) {
   const auto* eos = std::get_if<Eos>(&material.eos);
   if (eos == nullptr)
-    section.fail("reference", "this reference needs material '" + material.name + "' to use eos = \"" + eos_name + "\"");
+    section.fail("reference",
+                 "this reference needs material '" + material.name + "' to use eos = \"" + eos_name + "\"");
   return *eos;
 }
 
@@ -98,8 +99,8 @@ SourceContext read_sources_section(Section& section, Problem& problem) {
 
 void read_verification_section(Section& section, const Problem& problem, const SourceContext& sources,
                                RunControl& control, VerificationSetup& setup) {
-  const std::string reference = section.choice(
-      "reference", {"shock_tube", "noh", "sedov", "saltzman", "taylor_green", "piston", "be_shell", "detonation", "accuracy"});
+  const std::string reference = section.choice("reference", {"shock_tube", "noh", "sedov", "saltzman", "taylor_green",
+                                                             "piston", "be_shell", "detonation", "accuracy"});
   setup.name = reference;
   if (reference == "shock_tube") {
     ShockTubeReference parameters;
@@ -143,7 +144,8 @@ void read_verification_section(Section& section, const Problem& problem, const S
     const Material& material = reference_material(section, problem);
     PistonParameters parameters;
     parameters.eos = material_eos<MieGruneisen>(section, material, "mie_gruneisen");
-    if (!material.strength) section.fail("reference", "the piston needs material '" + material.name + "' with strength");
+    if (!material.strength)
+      section.fail("reference", "the piston needs material '" + material.name + "' with strength");
     parameters.shear_modulus = material.strength->shear_modulus;
     parameters.yield_stress = material.strength->yield_stress;
     parameters.initial_pressure = section.number("initial_pressure", parameters.initial_pressure);
@@ -181,7 +183,8 @@ void read_verification_section(Section& section, const Problem& problem, const S
     setup.parameters = parameters;
   } else {
     if (!sources.accuracy)
-      section.fail("reference", "the accuracy reference needs [sources] kind = \"accuracy\" (its parameters are read there)");
+      section.fail("reference",
+                   "the accuracy reference needs [sources] kind = \"accuracy\" (its parameters are read there)");
     control.reference = accuracy_reference(*sources.accuracy);
     setup.parameters = *sources.accuracy;
   }

@@ -13,8 +13,8 @@
 #include "option_table_reader.hpp"
 #include "overrides.hpp"
 #include "scene_internal.hpp"
-#include "warnings.hpp"
 #include "stagger/error.hpp"
+#include "warnings.hpp"
 
 namespace stagger {
 
@@ -64,17 +64,19 @@ void check_eos_domain(Section& section, const Material& material, const Section:
       // Paper eq. (6): the Hugoniot term has 1 - s eta in its denominator, eta = 1 - rho0/rho.
       const double eta = 1 - mg->rho0 / rho;
       if (!(1 - mg->s * eta > 0))
-        section.fail_at(density.node, section.key_path("density"),
-                        "density " + show(rho) + " at " + point_text(centre[0], centre[1]) +
-                            " is outside the Mie-Gruneisen domain of material '" + material.name + "' (1 - s eta = " +
-                            show(1 - mg->s * eta) + " <= 0; rho must stay below rho0 s / (s - 1) = " +
-                            show(mg->s > 1 ? mg->rho0 * mg->s / (mg->s - 1) : std::numeric_limits<double>::infinity()) + ")",
-                        "lower the density or check rho0 and s");
+        section.fail_at(
+            density.node, section.key_path("density"),
+            "density " + show(rho) + " at " + point_text(centre[0], centre[1]) +
+                " is outside the Mie-Gruneisen domain of material '" + material.name +
+                "' (1 - s eta = " + show(1 - mg->s * eta) + " <= 0; rho must stay below rho0 s / (s - 1) = " +
+                show(mg->s > 1 ? mg->rho0 * mg->s / (mg->s - 1) : std::numeric_limits<double>::infinity()) + ")",
+            "lower the density or check rho0 and s");
     }
     std::string problem;
     try {
       const double e = has_pressure ? eos_energy_from_pressure(material.eos, rho, given) : given;
-      if (!std::isfinite(e)) problem = "gives a non-finite specific internal energy";
+      if (!std::isfinite(e))
+        problem = "gives a non-finite specific internal energy";
       else if (!(eos_sound_speed_squared(material.eos, rho, e) > 0) && !std::holds_alternative<IdealGas>(material.eos))
         problem = "gives a non-positive sound speed squared";
     } catch (const Error& failure) {
@@ -83,8 +85,8 @@ void check_eos_domain(Section& section, const Material& material, const Section:
     if (!problem.empty())
       section.fail_at(thermal.node, section.key_path(thermal_key),
                       "the state rho = " + show(rho) + ", " + thermal_key + " = " + show(given) + " at " +
-                          point_text(centre[0], centre[1]) + " " + problem + " of material '" + material.name +
-                          "' (" + eos_kind(material.eos) + ")",
+                          point_text(centre[0], centre[1]) + " " + problem + " of material '" + material.name + "' (" +
+                          eos_kind(material.eos) + ")",
                       "check the initial state and the EOS constants");
   }
 }
@@ -145,7 +147,8 @@ Material read_material(Section& section) {
     if (!(burn.detonation_speed > 0)) burn_section->fail("detonation_speed", "must be > 0");
     if (const toml::node* points = burn_section->find("points")) {
       const auto* array = points->as_array();
-      if (array == nullptr) burn_section->fail("points", "expected an array of [x, y] pairs", "write points = [[0.0, 0.0]]");
+      if (array == nullptr)
+        burn_section->fail("points", "expected an array of [x, y] pairs", "write points = [[0.0, 0.0]]");
       for (const toml::node& element : *array) {
         const auto* pair = element.as_array();
         if (pair == nullptr || pair->size() != 2)
@@ -183,7 +186,8 @@ void read_regions(Section& root, const Mesh& mesh, Problem& problem) {
     material_names.push_back(problem.materials[m].name);
   }
   auto sections = root.table_array("region");
-  if (sections.empty()) root.fail("region", "missing: no [[region]]", "add one per mesh region: " + join(mesh.region_names));
+  if (sections.empty())
+    root.fail("region", "missing: no [[region]]", "add one per mesh region: " + join(mesh.region_names));
   std::set<std::string> covered;
   const std::vector<std::string> xy{"x", "y"};
   for (auto& section : sections) {
@@ -210,7 +214,8 @@ void read_regions(Section& root, const Mesh& mesh, Problem& problem) {
     for (Index p : point_set) points.push_back({mesh.x[p], mesh.y[p]});
 
     const auto density = section.value_or_expression("density", xy);
-    check_finite(section, density, section.key_path("density"), centres, [](double v) { return v > 0; }, "> 0");
+    check_finite(
+        section, density, section.key_path("density"), centres, [](double v) { return v > 0; }, "> 0");
     setup.density = to_space_function(density);
     const bool has_pressure = section.has("pressure"), has_energy = section.has("specific_internal_energy");
     if (has_pressure == has_energy)
@@ -220,8 +225,9 @@ void read_regions(Section& root, const Mesh& mesh, Problem& problem) {
     const char* thermal_key = has_pressure ? "pressure" : "specific_internal_energy";
     const auto thermal = section.value_or_expression(thermal_key, xy);
     if (ideal_gas)
-      check_finite(section, thermal, section.key_path(thermal_key), centres, [](double v) { return v >= 0; },
-                   ">= 0 for an ideal gas");
+      check_finite(
+          section, thermal, section.key_path(thermal_key), centres, [](double v) { return v >= 0; },
+          ">= 0 for an ideal gas");
     else
       check_finite(section, thermal, section.key_path(thermal_key), centres);
     (has_pressure ? setup.pressure : setup.specific_internal_energy) = to_space_function(thermal);
@@ -347,8 +353,7 @@ void read_boundaries(Section& root, const Mesh& mesh, double t_end, Problem& pro
 Scene load_scene(const std::string& path, const std::vector<std::pair<std::string, std::string>>& overrides) {
   using namespace scene_detail;
   std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error))
-    throw Error(path + ": scene file not found; check the path");
+  if (!std::filesystem::is_regular_file(path, error)) throw Error(path + ": scene file not found; check the path");
   toml::table document;
   try {
     document = toml::parse_file(path);

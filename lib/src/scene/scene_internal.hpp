@@ -15,7 +15,7 @@ Mesh read_mesh_section(Section& mesh, const std::string& scene_file, std::vector
 
 /// What [sources] resolved that [verification] reuses (the same manufactured solution).
 struct SourceContext {
-  std::string kind;                              ///< "" if no [sources]
+  std::string kind;  ///< "" if no [sources]
   std::optional<AccuracyParameters> accuracy;
 };
 

@@ -22,13 +22,20 @@ std::string where(const std::string& file, const toml::node* node, const toml::n
 
 std::string type_name(const toml::node& node) {
   switch (node.type()) {
-    case toml::node_type::table: return "a table";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a number";
-    case toml::node_type::boolean: return "a boolean";
-    default: return "a date/time";
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    default:
+      return "a date/time";
   }
 }
 
@@ -55,9 +62,12 @@ std::string unsafe_name_reason(std::string_view name) {
     if (!safe_name_character(name[i])) {
       const auto code = static_cast<unsigned char>(name[i]);
       std::string text = "has ";
-      if (code >= 0x80) text.append("a non-ASCII byte");
-      else if (code < 0x20 || code == 0x7f) text.append("a control character");
-      else text.append(1, '\'').append(1, name[i]).append(1, '\'');
+      if (code >= 0x80)
+        text.append("a non-ASCII byte");
+      else if (code < 0x20 || code == 0x7f)
+        text.append("a control character");
+      else
+        text.append(1, '\'').append(1, name[i]).append(1, '\'');
       return text.append(" at position ").append(std::to_string(i));
     }
   if (name.front() == '.') return "starts with '.'";
@@ -122,11 +132,13 @@ const toml::node& Section::require(std::string_view key) {
     // (not for one-letter keys, nor pairs such as R1/R2 that differ in a final digit).
     for (const auto& [other, other_node] : *table_) {
       const std::string_view name = other.str();
-      const bool digit_pair = name.size() == key.size() && name.substr(0, name.size() - 1) == key.substr(0, key.size() - 1) &&
+      const bool digit_pair = name.size() == key.size() &&
+                              name.substr(0, name.size() - 1) == key.substr(0, key.size() - 1) &&
                               std::isdigit(static_cast<unsigned char>(name.back())) != 0;
       if (key.size() >= 2 && known_.count(name) == 0 && !digit_pair &&
           edit_distance(name, key) <= std::max<std::size_t>(1, key.size() / 3))
-        fail_at(&other_node, key_path(key), "missing (is '" + std::string(name) + "' on this line a misspelling of it?)",
+        fail_at(&other_node, key_path(key),
+                "missing (is '" + std::string(name) + "' on this line a misspelling of it?)",
                 "rename it to '" + std::string(key) + "', or add the key to " + section);
     }
     fail_at(nullptr, key_path(key), "missing", "add it to " + section + " (see docs/scenes.md)");
@@ -162,9 +174,13 @@ namespace {
 constexpr long kIntegerLimit = 1L << 53;
 }  // namespace
 
-long Section::integer(std::string_view key) { return integer_in(key, -kIntegerLimit, kIntegerLimit); }
+long Section::integer(std::string_view key) {
+  return integer_in(key, -kIntegerLimit, kIntegerLimit);
+}
 
-long Section::integer(std::string_view key, long fallback) { return find(key) ? integer(key) : fallback; }
+long Section::integer(std::string_view key, long fallback) {
+  return find(key) ? integer(key) : fallback;
+}
 
 long Section::integer_in(std::string_view key, long min, long max) {
   const toml::node& node = require(key);
@@ -234,8 +250,8 @@ std::vector<double> Section::numbers(std::string_view key, std::size_t count) {
   std::vector<double> values;
   for (const toml::node& element : *array) {
     if (!element.is_number() || !std::isfinite(*element.value<double>()))
-      fail_at(&element, key_path(key), "element " + std::to_string(values.size()) + " is " + type_name(element) +
-                                           ", not a finite number");
+      fail_at(&element, key_path(key),
+              "element " + std::to_string(values.size()) + " is " + type_name(element) + ", not a finite number");
     values.push_back(*element.value<double>());
   }
   return values;
@@ -256,8 +272,8 @@ std::vector<std::string> Section::strings(std::string_view key) {
   std::vector<std::string> values;
   for (const toml::node& element : *array) {
     if (!element.is_string())
-      fail_at(&element, key_path(key), "element " + std::to_string(values.size()) + " is " + type_name(element) +
-                                           ", not a string");
+      fail_at(&element, key_path(key),
+              "element " + std::to_string(values.size()) + " is " + type_name(element) + ", not a string");
     values.push_back(*element.value<std::string>());
   }
   return values;
@@ -305,8 +321,7 @@ std::vector<Section> Section::table_array(std::string_view key) {
   if (node == nullptr) return result;
   const auto* array = node->as_array();
   if (array == nullptr || !array->is_array_of_tables())
-    fail(key, "expected an array of tables, got " + type_name(*node),
-         "write each entry as [[" + key_path(key) + "]]");
+    fail(key, "expected an array of tables, got " + type_name(*node), "write each entry as [[" + key_path(key) + "]]");
   for (std::size_t i = 0; i < array->size(); ++i)
     result.emplace_back(file_, *array->get(i)->as_table(), key_path(key) + "[" + std::to_string(i) + "]");
   return result;

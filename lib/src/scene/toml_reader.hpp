@@ -36,7 +36,7 @@ std::string unsafe_name_reason(std::string_view name);
 std::string safe_name(std::string_view name);
 
 class Section {
-public:
+ public:
   Section(std::string file, const toml::table& table, std::string path);
 
   const std::string& path() const { return path_; }
@@ -47,7 +47,7 @@ public:
   const toml::node* find(std::string_view key);
   bool has(std::string_view key) { return find(key) != nullptr; }
 
-  double number(std::string_view key);                  // required
+  double number(std::string_view key);  // required
   double number(std::string_view key, double fallback);
   /// An integer (a whole float such as 1e3 is accepted). Every integer is range-checked:
   /// the plain forms allow [-2^53, 2^53] (what a double holds exactly), the *_in forms
@@ -92,7 +92,7 @@ public:
   /// Rejects every key that was never asked for, naming the known ones.
   void finish() const;
 
-private:
+ private:
   const toml::node& require(std::string_view key);
   std::string file_;
   const toml::table* table_;

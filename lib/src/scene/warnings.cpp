@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <cstdint>
+#include <limits>
 #include <sstream>
 
 #include "scene_internal.hpp"
@@ -24,7 +24,7 @@ std::string point_text(double x, double y) {
 
 // "FILE:LINE: key 'path'" for a key of the document (the line of its table if absent).
 class Locator {
-public:
+ public:
   Locator(const toml::table& document, std::string file) : document_(document), file_(std::move(file)) {}
   std::string at(const std::string& path) const {
     const toml::node* node = document_.at_path(path).node();
@@ -39,7 +39,7 @@ public:
   }
   bool has(const std::string& path) const { return document_.at_path(path).node() != nullptr; }
 
-private:
+ private:
   const toml::table& document_;
   std::string file_;
 };
@@ -88,8 +88,9 @@ std::vector<ZoneState> initial_states(const Problem& problem) {
     s.rho = setup.density(centre[0], centre[1]);
     double e = 0;
     try {
-      e = setup.specific_internal_energy ? setup.specific_internal_energy(centre[0], centre[1])
-                                         : eos_energy_from_pressure(material.eos, s.rho, setup.pressure(centre[0], centre[1]));
+      e = setup.specific_internal_energy
+              ? setup.specific_internal_energy(centre[0], centre[1])
+              : eos_energy_from_pressure(material.eos, s.rho, setup.pressure(centre[0], centre[1]));
       const double c2 = std::max(eos_sound_speed_squared(material.eos, s.rho, e), 0.0);
       s.bulk = s.rho * c2;
       const double elastic = material.strength ? (4.0 / 3.0) * material.strength->shear_modulus / s.rho : 0.0;
@@ -168,7 +169,8 @@ Untagged untagged_boundary_edges(const Mesh& mesh) {
   sides.reserve(mesh.corner_point.size());
   for (Index z = 0; z < mesh.num_zones(); ++z) {
     const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
-    for (Index c = begin; c < end; ++c) sides.push_back(key(mesh.corner_point[c], mesh.corner_point[c + 1 < end ? c + 1 : begin]));
+    for (Index c = begin; c < end; ++c)
+      sides.push_back(key(mesh.corner_point[c], mesh.corner_point[c + 1 < end ? c + 1 : begin]));
   }
   std::sort(sides.begin(), sides.end());
   std::vector<std::uint64_t> tagged;
@@ -203,7 +205,9 @@ void review_scene(const toml::table& document, Scene& scene, const WarningThresh
   const RunControl& control = scene.control;
   const HydroOptions& options = problem.options;
   const Locator key(document, scene.file);
-  auto warn = [&](const std::string& path, const std::string& what) { scene.warnings.push_back(key.at(path) + ": " + what); };
+  auto warn = [&](const std::string& path, const std::string& what) {
+    scene.warnings.push_back(key.at(path) + ": " + what);
+  };
 
   // The first time step, estimated as the set-up will take it: cfl * L / c over the zones
   // (no artificial viscosity yet, so the estimate is an upper bound), then dt_init, dt_max.
@@ -211,16 +215,18 @@ void review_scene(const toml::table& document, Scene& scene, const WarningThresh
   for (const ZoneState& s : states)
     if (s.material >= 0 && !std::isfinite(s.c))
       throw Error(key.at("material[" + std::to_string(s.material) + "]") + ": the initial state at " +
-                  point_text(s.centre_x, s.centre_y) + " (region '" + problem.regions[s.region].region +
-                  "', density " + show(s.rho) + ") has a non-finite sound speed; check the EOS constants and the "
+                  point_text(s.centre_x, s.centre_y) + " (region '" + problem.regions[s.region].region + "', density " +
+                  show(s.rho) +
+                  ") has a non-finite sound speed; check the EOS constants and the "
                   "initial state");
   const double drive = driver_speed(problem, states);
-  double cfl_length_over_c = std::numeric_limits<double>::infinity();  // min L / c
+  double cfl_length_over_c = std::numeric_limits<double>::infinity();   // min L / c
   double length_over_signal = std::numeric_limits<double>::infinity();  // min L / (c + |v| + drive)
   for (const ZoneState& s : states) {
     if (s.material < 0 || !(s.length > 0)) continue;
     if (s.c > 0) cfl_length_over_c = std::min(cfl_length_over_c, s.length / s.c);
-    if (s.c + s.speed + drive > 0) length_over_signal = std::min(length_over_signal, s.length / (s.c + s.speed + drive));
+    if (s.c + s.speed + drive > 0)
+      length_over_signal = std::min(length_over_signal, s.length / (s.c + s.speed + drive));
   }
   const double t_end = problem.t_end;
   const double dt_min = options.dt_min > 0 ? options.dt_min : 1e-8 * t_end;
@@ -240,11 +246,11 @@ void review_scene(const toml::table& document, Scene& scene, const WarningThresh
         throw Error(key.at("numerics.dt_min") + ": " + show(dt_min) + " is above " + estimate +
                     ": the first step would collapse; lower numerics.dt_min");
       if (HydroOptions{}.cfl * cfl_length_over_c >= dt_min)
-        throw Error(key.at("numerics.cfl") + ": " + show(options.cfl) + " puts " + estimate + " below " +
-                    dt_min_text + ": the first step would collapse; use a cfl near the default " +
-                    show(HydroOptions{}.cfl));
+        throw Error(key.at("numerics.cfl") + ": " + show(options.cfl) + " puts " + estimate + " below " + dt_min_text +
+                    ": the first step would collapse; use a cfl near the default " + show(HydroOptions{}.cfl));
       throw Error(key.at("time.end") + ": " + show(t_end) + " is " +
-                  (std::isfinite(t_end / dt_cfl) ? show(t_end / dt_cfl) : std::string("over 1e300")) + " times " + estimate +
+                  (std::isfinite(t_end / dt_cfl) ? show(t_end / dt_cfl) : std::string("over 1e300")) + " times " +
+                  estimate +
                   ", and the step may not fall below 1e-8 time.end: the run would stop at once; check the units of "
                   "time.end");
     }

@@ -11,11 +11,11 @@ namespace stagger::scene_detail {
 
 /// Thresholds of the warnings (docs/scenes.md justifies them).
 struct WarningThresholds {
-  double min_cycles = 10;           ///< a run expected to last fewer cycles
-  double max_cycles = 1e8;          ///< a run expected to last more cycles
-  double yield_over_shear = 10;     ///< Y0 / mu above this
+  double min_cycles = 10;                                         ///< a run expected to last fewer cycles
+  double max_cycles = 1e8;                                        ///< a run expected to last more cycles
+  double yield_over_shear = 10;                                   ///< Y0 / mu above this
   double shear_over_bulk_low = 1e-3, shear_over_bulk_high = 1e3;  ///< mu / K outside
-  double speed_over_sound = 10;     ///< |v| / c above this (where c > 0)
+  double speed_over_sound = 10;                                   ///< |v| / c above this (where c > 0)
 };
 
 /// Throws stagger::Error "FILE:LINE: key '...': ..." for a dump schedule above

@@ -15,7 +15,9 @@
 namespace stagger {
 namespace {
 
-double radius(double x, double y) { return std::hypot(x, y); }
+double radius(double x, double y) {
+  return std::hypot(x, y);
+}
 
 /// Area-weighted mean of a zone field over the zones selected by `keep`; NaN if none.
 template <class Keep>
@@ -38,14 +40,14 @@ Reference shock_tube_reference(GasState left, GasState right, double gamma, doub
   return [exact](const Simulation& simulation, NamedValues& errors, NamedValues& diagnostics) {
     const double t = simulation.time();
     zone_field_errors(
-        simulation, simulation.density(), [&](double x, double) { return exact->sample(x, t).density; },
-        "density", errors);
+        simulation, simulation.density(), [&](double x, double) { return exact->sample(x, t).density; }, "density",
+        errors);
     point_field_errors(
-        simulation, simulation.velocity_x(), [&](double x, double) { return exact->sample(x, t).velocity; },
-        "velocity", errors);
+        simulation, simulation.velocity_x(), [&](double x, double) { return exact->sample(x, t).velocity; }, "velocity",
+        errors);
     zone_field_errors(
-        simulation, simulation.pressure(), [&](double x, double) { return exact->sample(x, t).pressure; },
-        "pressure", errors);
+        simulation, simulation.pressure(), [&](double x, double) { return exact->sample(x, t).pressure; }, "pressure",
+        errors);
     // Variation across y: zones grouped into columns by their centre x (equal to 1e-9 of the
     // domain length); max over columns of max |rho - mean| / mean.
     const auto centres = zone_centres(simulation.mesh(), simulation.x(), simulation.y());
@@ -64,8 +66,7 @@ Reference shock_tube_reference(GasState left, GasState right, double gamma, doub
 
 // ---- Noh ----
 
-NohSolution::NohSolution(double gamma, double rho0, double u0, int nu)
-    : gamma_(gamma), rho0_(rho0), u0_(u0), nu_(nu) {
+NohSolution::NohSolution(double gamma, double rho0, double u0, int nu) : gamma_(gamma), rho0_(rho0), u0_(u0), nu_(nu) {
   if (!(gamma > 1.0) || !(rho0 > 0.0) || !(u0 > 0.0) || nu < 2 || nu > 3) {
     std::ostringstream message;
     message << "NohSolution: needs gamma > 1, rho0 > 0, u0 > 0 and nu = 2 or 3; got gamma = " << gamma
@@ -74,7 +75,9 @@ NohSolution::NohSolution(double gamma, double rho0, double u0, int nu)
   }
 }
 
-double NohSolution::shock_radius(double t) const { return 0.5 * u0_ * (gamma_ - 1.0) * t; }
+double NohSolution::shock_radius(double t) const {
+  return 0.5 * u0_ * (gamma_ - 1.0) * t;
+}
 
 double NohSolution::post_shock_density() const {
   return rho0_ * std::pow((gamma_ + 1.0) / (gamma_ - 1.0), nu_);
@@ -96,17 +99,17 @@ Reference noh_reference(double gamma, double rho0, double u0) {
     const double t = simulation.time();
     const auto density = simulation.density();
     zone_field_errors(
-        simulation, density, [&](double x, double y) { return solution->state(radius(x, y), t).density; },
-        "density", errors);
+        simulation, density, [&](double x, double y) { return solution->state(radius(x, y), t).density; }, "density",
+        errors);
     const double exact_radius = solution->shock_radius(t);
     // Half-way between the exact plateau and the exact pre-shock density at the shock,
     // rho0 ((gamma+1)/(gamma-1))^(nu-1): (16 + 4)/2 = 10 for gamma = 5/3.
     const double pre_shock = rho0 * (gamma + 1.0) / (gamma - 1.0);
     // Only crossings beyond half the exact radius: the wall-heating dip at the centre
     // crosses the threshold too and would pull the mean inward.
-    const FrontCrossing front = front_crossing(simulation.mesh(), simulation.x(), simulation.y(), density,
-                                               0.5 * (solution->post_shock_density() + pre_shock), radius,
-                                               0.5 * exact_radius);
+    const FrontCrossing front =
+        front_crossing(simulation.mesh(), simulation.x(), simulation.y(), density,
+                       0.5 * (solution->post_shock_density() + pre_shock), radius, 0.5 * exact_radius);
     diagnostics.emplace_back("shock_radius", front.position);
     diagnostics.emplace_back("shock_radius_exact", exact_radius);
 

@@ -34,9 +34,8 @@ PressureFunction pressure_function(double p, const GasState& side, double sound_
 void check_state(const GasState& s, const char* which) {
   if (!(s.density > 0.0) || !(s.pressure > 0.0) || !std::isfinite(s.velocity)) {
     std::ostringstream message;
-    message << "ExactRiemann: the " << which << " state (density " << s.density << ", velocity "
-            << s.velocity << ", pressure " << s.pressure
-            << ") needs a positive density and pressure and a finite velocity";
+    message << "ExactRiemann: the " << which << " state (density " << s.density << ", velocity " << s.velocity
+            << ", pressure " << s.pressure << ") needs a positive density and pressure and a finite velocity";
     throw Error(message.str());
   }
 }
@@ -62,8 +61,8 @@ ExactRiemann::ExactRiemann(GasState left, GasState right, double gamma, double x
   // Newton iteration on f(p) = f_L(p) + f_R(p) + du = 0 (Toro sec. 4.3.2), started from the
   // primitive-variable guess (eq. 4.47), floored at a small positive pressure.
   const double floor = 1e-14 * std::max(left.pressure, right.pressure);
-  double p = 0.5 * (left.pressure + right.pressure) -
-             0.125 * du * (left.density + right.density) * (c_left_ + c_right_);
+  double p =
+      0.5 * (left.pressure + right.pressure) - 0.125 * du * (left.density + right.density) * (c_left_ + c_right_);
   p = std::max(p, floor);
   bool converged = false;
   for (int iteration = 0; iteration < 200; ++iteration) {
@@ -80,8 +79,8 @@ ExactRiemann::ExactRiemann(GasState left, GasState right, double gamma, double x
   }
   if (!converged) {
     // Round-off may keep the last digit oscillating: accept a negligible residual.
-    const double residual = pressure_function(p, left, c_left_, gamma).value +
-                            pressure_function(p, right, c_right_, gamma).value + du;
+    const double residual =
+        pressure_function(p, left, c_left_, gamma).value + pressure_function(p, right, c_right_, gamma).value + du;
     if (!(std::abs(residual) <= 1e-12 * (std::abs(du) + c_left_ + c_right_)))
       throw Error("ExactRiemann: the Newton iteration for the star pressure did not converge");
   }
@@ -103,8 +102,8 @@ std::array<double, 5> ExactRiemann::wave_positions(double t) const {
   const double g = gamma_;
   std::array<double, 5> speeds{};
   if (p_star_ > left_.pressure) {  // left shock, eq. (4.52)
-    const double s = left_.velocity -
-                     c_left_ * std::sqrt((g + 1.0) / (2.0 * g) * p_star_ / left_.pressure + (g - 1.0) / (2.0 * g));
+    const double s =
+        left_.velocity - c_left_ * std::sqrt((g + 1.0) / (2.0 * g) * p_star_ / left_.pressure + (g - 1.0) / (2.0 * g));
     speeds[0] = speeds[1] = s;
   } else {  // left fan head and tail, eqs. (4.55)
     speeds[0] = left_.velocity - c_left_;
@@ -131,8 +130,8 @@ GasState ExactRiemann::sample(double x, double t) const {
   const double exponent = (g - 1.0) / (2.0 * g);
   if (s <= u_star_) {  // left of the contact
     if (p_star_ > left_.pressure) {
-      const double shock = left_.velocity -
-                           c_left_ * std::sqrt((g + 1.0) / (2.0 * g) * p_star_ / left_.pressure + exponent);
+      const double shock =
+          left_.velocity - c_left_ * std::sqrt((g + 1.0) / (2.0 * g) * p_star_ / left_.pressure + exponent);
       if (s <= shock) return left_;
       return {rho_star_left_, u_star_, p_star_};
     }
@@ -147,8 +146,8 @@ GasState ExactRiemann::sample(double x, double t) const {
             left_.pressure * std::pow(factor, 2.0 * g / (g - 1.0))};
   }
   if (p_star_ > right_.pressure) {
-    const double shock = right_.velocity +
-                         c_right_ * std::sqrt((g + 1.0) / (2.0 * g) * p_star_ / right_.pressure + exponent);
+    const double shock =
+        right_.velocity + c_right_ * std::sqrt((g + 1.0) / (2.0 * g) * p_star_ / right_.pressure + exponent);
     if (s >= shock) return right_;
     return {rho_star_right_, u_star_, p_star_};
   }

@@ -27,11 +27,16 @@ namespace stagger {
 SedovSolution::SedovSolution(double gamma, int nu, double rho0, double energy)
     : gamma_(gamma), rho0_(rho0), energy_(energy), nu_(nu) {
   std::ostringstream problem;
-  if (!(gamma > 1.0)) problem << "gamma = " << gamma << " must be > 1";
-  else if (nu < 1 || nu > 3) problem << "nu = " << nu << " must be 1 (planar), 2 (cylindrical) or 3 (spherical)";
-  else if (!(rho0 > 0.0)) problem << "rho0 = " << rho0 << " must be positive";
-  else if (!(energy > 0.0)) problem << "energy = " << energy << " must be positive";
-  else if (std::abs(gamma - 2.0) < 1e-12) problem << "gamma = 2 is a singular case (Kamm & Timmes' omega3)";
+  if (!(gamma > 1.0))
+    problem << "gamma = " << gamma << " must be > 1";
+  else if (nu < 1 || nu > 3)
+    problem << "nu = " << nu << " must be 1 (planar), 2 (cylindrical) or 3 (spherical)";
+  else if (!(rho0 > 0.0))
+    problem << "rho0 = " << rho0 << " must be positive";
+  else if (!(energy > 0.0))
+    problem << "energy = " << energy << " must be positive";
+  else if (std::abs(gamma - 2.0) < 1e-12)
+    problem << "gamma = 2 is a singular case (Kamm & Timmes' omega3)";
   if (!problem.str().empty()) throw Error("SedovSolution: " + problem.str());
 
   const double j = nu, gm1 = gamma - 1.0, gp1 = gamma + 1.0;
@@ -44,7 +49,7 @@ SedovSolution::SedovSolution(double gamma, int nu, double rho0, double energy)
             << " is the singular or vacuum case of Kamm & Timmes, which is not implemented";
     throw Error(message.str());
   }
-  const double denom2 = 2.0 * gm1 + j;     // 2(gamma-1) + j - gamma omega
+  const double denom2 = 2.0 * gm1 + j;      // 2(gamma-1) + j - gamma omega
   const double denom3 = j * (2.0 - gamma);  // j (2 - gamma) - omega
   // Exponents, eqs. 42-47.
   a0_ = 2.0 / xg2;
@@ -64,10 +69,9 @@ SedovSolution::SedovSolution(double gamma, int nu, double rho0, double energy)
   // I = int_0^1 (g f^2 + h) lambda^(nu-1) dlambda by composite 5-point Gauss-Legendre in
   // lambda: the integrand is smooth in lambda (V is analytic in w ~ lambda^(1/|a2|)), while
   // in V it has an integrable singularity at the origin.
-  constexpr double nodes[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
-                               0.9061798459386640};
-  constexpr double weights[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
-                                 0.4786286704993665, 0.2369268850561891};
+  constexpr double nodes[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831, 0.9061798459386640};
+  constexpr double weights[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
+                                 0.2369268850561891};
   constexpr int panels = 400;
   double integral = 0;
   for (int k = 0; k < panels; ++k) {
@@ -113,7 +117,9 @@ double SedovSolution::shock_radius(double t) const {
   return std::pow(energy_ / (alpha_ * rho0_), 1.0 / (nu_ + 2.0)) * std::pow(t, 2.0 / (nu_ + 2.0));
 }
 
-double SedovSolution::post_shock_density() const { return rho0_ * (gamma_ + 1.0) / (gamma_ - 1.0); }
+double SedovSolution::post_shock_density() const {
+  return rho0_ * (gamma_ + 1.0) / (gamma_ - 1.0);
+}
 
 GasState SedovSolution::state(double r, double t) const {
   const double radius = shock_radius(t);
@@ -134,13 +140,14 @@ Reference sedov_reference(double gamma, double rho0, double energy_quarter) {
         "density", errors);
     double peak = 0;
     for (double rho : density) peak = std::max(peak, rho);
-    const FrontCrossing front = front_crossing(simulation.mesh(), simulation.x(), simulation.y(), density,
-                                               0.5 * (rho0 + peak),
-                                               [](double x, double y) { return std::hypot(x, y); });
+    const FrontCrossing front =
+        front_crossing(simulation.mesh(), simulation.x(), simulation.y(), density, 0.5 * (rho0 + peak),
+                       [](double x, double y) { return std::hypot(x, y); });
     const double exact = solution->shock_radius(t);
     diagnostics.emplace_back("shock_radius", front.position);
     diagnostics.emplace_back("shock_radius_exact", exact);
-    if (exact > 0 && front.crossings > 0) diagnostics.emplace_back("shock_radius_error", (front.position - exact) / exact);
+    if (exact > 0 && front.crossings > 0)
+      diagnostics.emplace_back("shock_radius_error", (front.position - exact) / exact);
     diagnostics.emplace_back("peak_density", peak);
     diagnostics.emplace_back("peak_density_exact", solution->post_shock_density());
   };

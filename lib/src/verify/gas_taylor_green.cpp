@@ -47,7 +47,8 @@ Reference taylor_green_reference(double p0) {
     zone_field_errors(
         simulation, simulation.pressure(), [p0](double x, double y) { return taylor_green_pressure(x, y, p0); },
         "pressure", errors);
-    zone_field_errors(simulation, simulation.density(), [](double, double) { return 1.0; }, "density", errors);
+    zone_field_errors(
+        simulation, simulation.density(), [](double, double) { return 1.0; }, "density", errors);
   };
 }
 

@@ -34,9 +34,9 @@ std::array<std::vector<double>, 2> zone_centres(const Mesh& mesh, std::span<cons
   std::array<std::vector<double>, 2> centres{std::vector<double>(zones), std::vector<double>(zones)};
   for (Index z = 0; z < zones; ++z) {
     const Index begin = mesh.zone_corner_begin[z];
-    const auto [cx, cy] = polygon_centre(static_cast<int>(mesh.zone_corner_begin[z + 1] - begin),
-                                         [&](int k) { return x[mesh.corner_point[begin + k]]; },
-                                         [&](int k) { return y[mesh.corner_point[begin + k]]; });
+    const auto [cx, cy] = polygon_centre(
+        static_cast<int>(mesh.zone_corner_begin[z + 1] - begin), [&](int k) { return x[mesh.corner_point[begin + k]]; },
+        [&](int k) { return y[mesh.corner_point[begin + k]]; });
     centres[0][z] = cx;
     centres[1][z] = cy;
   }
@@ -49,9 +49,9 @@ std::vector<double> zone_areas(const Mesh& mesh, std::span<const double> x, std:
   std::vector<double> areas(zones);
   for (Index z = 0; z < zones; ++z) {
     const Index begin = mesh.zone_corner_begin[z];
-    areas[z] = polygon_area(static_cast<int>(mesh.zone_corner_begin[z + 1] - begin),
-                            [&](int k) { return x[mesh.corner_point[begin + k]]; },
-                            [&](int k) { return y[mesh.corner_point[begin + k]]; });
+    areas[z] = polygon_area(
+        static_cast<int>(mesh.zone_corner_begin[z + 1] - begin), [&](int k) { return x[mesh.corner_point[begin + k]]; },
+        [&](int k) { return y[mesh.corner_point[begin + k]]; });
   }
   return areas;
 }
@@ -68,7 +68,8 @@ std::vector<double> point_dual_areas(const Mesh& mesh, std::span<const double> x
       // Corner quadrilateral (point, mid-edge to next, centre, mid-edge to previous).
       const double qx[4] = {x[p], 0.5 * (x[p] + x[next]), centres[0][z], 0.5 * (x[p] + x[prev])};
       const double qy[4] = {y[p], 0.5 * (y[p] + y[next]), centres[1][z], 0.5 * (y[p] + y[prev])};
-      areas[p] += polygon_area(4, [&](int k) { return qx[k]; }, [&](int k) { return qy[k]; });
+      areas[p] += polygon_area(
+          4, [&](int k) { return qx[k]; }, [&](int k) { return qy[k]; });
     }
   }
   return areas;
@@ -78,8 +79,7 @@ void append_norms(std::span<const double> weights, std::span<const double> diffe
                   NamedValues& errors) {
   if (weights.size() != differences.size()) {
     std::ostringstream message;
-    message << "append_norms(" << name << "): " << weights.size() << " weights for " << differences.size()
-            << " values";
+    message << "append_norms(" << name << "): " << weights.size() << " weights for " << differences.size() << " values";
     throw Error(message.str());
   }
   double total = 0, l1 = 0, l2 = 0, linf = 0;
@@ -123,8 +123,8 @@ void point_field_errors(const Simulation& simulation, std::span<const double> fi
 }
 
 void point_velocity_errors(const Simulation& simulation,
-                           const std::function<std::array<double, 2>(double, double)>& exact,
-                           const std::string& name, NamedValues& errors) {
+                           const std::function<std::array<double, 2>(double, double)>& exact, const std::string& name,
+                           NamedValues& errors) {
   const auto x = simulation.x(), y = simulation.y();
   const auto vx = simulation.velocity_x(), vy = simulation.velocity_y();
   std::vector<double> differences(x.size());

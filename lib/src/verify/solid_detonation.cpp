@@ -34,8 +34,7 @@ double jwl_cold_derivative(const Jwl& j, double v) {
 /// c^2 = dp/drho|_e + p / rho^2 dp/de|_rho = (V^2 / rho0) (-f'(V) + omega E / V^2 + omega p / V).
 double jwl_sound_speed_squared(const Jwl& j, double v, double energy_per_volume) {
   const double p = jwl_cold(j, v) + j.omega * energy_per_volume / v;
-  return v * v / j.rho0 *
-         (-jwl_cold_derivative(j, v) + j.omega * energy_per_volume / (v * v) + j.omega * p / v);
+  return v * v / j.rho0 * (-jwl_cold_derivative(j, v) + j.omega * energy_per_volume / (v * v) + j.omega * p / v);
 }
 
 }  // namespace
@@ -114,8 +113,8 @@ CJDetonation::CJDetonation(const DetonationParameters& parameters) : parameters_
   cj_.sound_speed = std::sqrt(jwl_sound_speed_squared(j, v_cj_, e_cj));
 
   // Isentrope through the CJ point: p_s = A e^{-R1 V} + B e^{-R2 V} + C V^{-(1 + omega)}.
-  isentrope_c_ = (cj_.pressure - j.A * std::exp(-j.R1 * v_cj_) - j.B * std::exp(-j.R2 * v_cj_)) *
-                 std::pow(v_cj_, 1.0 + j.omega);
+  isentrope_c_ =
+      (cj_.pressure - j.A * std::exp(-j.R1 * v_cj_) - j.B * std::exp(-j.R2 * v_cj_)) * std::pow(v_cj_, 1.0 + j.omega);
 
   // Riemann invariant by panels from V_CJ until u changes sign: the rest state (plateau).
   panel_v_ = {v_cj_};

@@ -37,8 +37,7 @@ double hugoniot_energy(const MieGruneisen& eos, const SolidState& ahead, double 
 
 /// The state behind a shock of density rho1 and stress s1 running into `ahead` (towards +x),
 /// and the shock speed (lab frame): mass m = rho (D - u) and momentum m (u1 - u0) = P1 - P0.
-SolidState shocked_state(const MieGruneisen& eos, const SolidState& ahead, double rho1, double s1,
-                         double& speed) {
+SolidState shocked_state(const MieGruneisen& eos, const SolidState& ahead, double rho1, double s1, double& speed) {
   SolidState behind;
   behind.density = rho1;
   behind.stress_xx = s1;
@@ -75,9 +74,8 @@ ElasticPlasticPiston::ElasticPlasticPiston(const PistonParameters& parameters) :
   const double up = parameters.piston_velocity;
   if (up <= elastic_.velocity) {
     std::ostringstream message;
-    message << "piston exact solution: piston velocity " << up
-            << " does not exceed the elastic limit velocity " << elastic_.velocity
-            << " (single elastic wave, not a two-wave problem)";
+    message << "piston exact solution: piston velocity " << up << " does not exceed the elastic limit velocity "
+            << elastic_.velocity << " (single elastic wave, not a two-wave problem)";
     throw Error(message.str());
   }
 

@@ -51,11 +51,11 @@ Reference piston_reference(const PistonParameters& parameters) {
   return [piston](const Simulation& simulation, NamedValues& errors, NamedValues& diagnostics) {
     const double t = simulation.time();
     point_field_errors(
-        simulation, simulation.velocity_x(), [&](double x, double) { return piston.sample(x, t).velocity; },
-        "velocity", errors);
+        simulation, simulation.velocity_x(), [&](double x, double) { return piston.sample(x, t).velocity; }, "velocity",
+        errors);
     zone_field_errors(
-        simulation, simulation.pressure(), [&](double x, double) { return piston.sample(x, t).pressure; },
-        "pressure", errors);
+        simulation, simulation.pressure(), [&](double x, double) { return piston.sample(x, t).pressure; }, "pressure",
+        errors);
     zone_field_errors(
         simulation, simulation.density(), [&](double x, double) { return piston.sample(x, t).density; }, "density",
         errors);
@@ -110,8 +110,8 @@ Reference be_shell_reference(const ShellParameters& parameters) {
     const auto mass = simulation.zone_mass();
     const double total_mass = std::accumulate(mass.begin(), mass.end(), 0.0);
     const ShellParameters& p = shell.parameters();
-    const double full_mass = p.density * std::numbers::pi *
-                             (p.outer_radius * p.outer_radius - p.inner_radius * p.inner_radius);
+    const double full_mass =
+        p.density * std::numbers::pi * (p.outer_radius * p.outer_radius - p.inner_radius * p.inner_radius);
     diagnostics.emplace_back("kinetic_energy_exact", shell.kinetic_energy(t) * total_mass / full_mass);
   };
 }
@@ -122,8 +122,7 @@ Reference detonation_reference(const DetonationParameters& parameters) {
     const double t = simulation.time();
     const auto pressure = simulation.pressure();
     zone_field_errors(
-        simulation, pressure, [&](double x, double) { return detonation.sample(x, t).pressure; }, "pressure",
-        errors);
+        simulation, pressure, [&](double x, double) { return detonation.sample(x, t).pressure; }, "pressure", errors);
     const auto centres = zone_centres(simulation.mesh(), simulation.x(), simulation.y());
     const auto area = simulation.zone_area();
     const double x0 = detonation.parameters().x0;

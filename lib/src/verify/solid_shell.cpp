@@ -22,7 +22,9 @@ constexpr std::array<double, 4> kGaussWeights{0.3478548451374538, 0.652145154862
 constexpr int kIntervals = 2000;
 
 /// F(r) = (r + C) ln(r + C) - r ln r, so that dF/dr = ln((r + C) / r) = 2 ln(Ro / Ri).
-double potential(double r2, double c) { return (r2 + c) * std::log(r2 + c) - r2 * std::log(r2); }
+double potential(double r2, double c) {
+  return (r2 + c) * std::log(r2 + c) - r2 * std::log(r2);
+}
 
 /// dt/dsigma = sigma / |Ri Ri'| with r = Ri^2 = r_stop + sigma^2 and
 /// (Ri Ri')^2 ln(Ro/Ri) = beta (F(r) - F(r_stop)): smooth, finite at sigma = 0.
@@ -41,8 +43,7 @@ double time_integrand(double sigma, double r2_stop, double c, double beta) {
 
 HowellBallShell::HowellBallShell(const ShellParameters& parameters) : parameters_(parameters) {
   const ShellParameters& p = parameters;
-  if (!(p.inner_radius > 0 && p.outer_radius > p.inner_radius && p.velocity > 0 && p.density > 0 &&
-        p.yield_stress > 0))
+  if (!(p.inner_radius > 0 && p.outer_radius > p.inner_radius && p.velocity > 0 && p.density > 0 && p.yield_stress > 0))
     throw Error("Howell-Ball shell: need 0 < inner radius < outer radius and positive V0, density, yield stress");
   c_ = p.outer_radius * p.outer_radius - p.inner_radius * p.inner_radius;
   const double r2_0 = p.inner_radius * p.inner_radius;
@@ -53,8 +54,9 @@ HowellBallShell::HowellBallShell(const ShellParameters& parameters) : parameters
   const double beta = p.yield_stress / (std::numbers::sqrt3 * p.density);
   const double f_stop = potential(r2_0, c_) - q0 * q0 * log0 / beta;
   if (f_stop <= c_ * std::log(c_))
-    throw Error("Howell-Ball shell: the kinetic energy exceeds what plastic work can absorb before the "
-                "inner surface reaches the axis (no stopping radius)");
+    throw Error(
+        "Howell-Ball shell: the kinetic energy exceeds what plastic work can absorb before the "
+        "inner surface reaches the axis (no stopping radius)");
   double low = 0, high = r2_0;
   for (int iteration = 0; iteration < 200 && high - low > 1e-18 * r2_0; ++iteration) {
     const double mid = 0.5 * (low + high);
@@ -108,11 +110,17 @@ double HowellBallShell::velocity_at(double r2) const {
   return energy > 0 ? std::sqrt(energy / (0.5 * std::log((r2 + c_) / r2))) : 0.0;
 }
 
-double HowellBallShell::inner_radius(double t) const { return std::sqrt(inner_radius_squared(t)); }
+double HowellBallShell::inner_radius(double t) const {
+  return std::sqrt(inner_radius_squared(t));
+}
 
-double HowellBallShell::outer_radius(double t) const { return std::sqrt(inner_radius_squared(t) + c_); }
+double HowellBallShell::outer_radius(double t) const {
+  return std::sqrt(inner_radius_squared(t) + c_);
+}
 
-double HowellBallShell::outer_stopping_radius() const { return std::sqrt(inner_stop_ * inner_stop_ + c_); }
+double HowellBallShell::outer_stopping_radius() const {
+  return std::sqrt(inner_stop_ * inner_stop_ + c_);
+}
 
 double HowellBallShell::inner_velocity(double t) const {
   if (t >= stopping_time_) return 0.0;

@@ -24,10 +24,10 @@ enum class TrianglePolicy {
 /// timeout or running out of memory becomes a stagger::Error naming the file.
 struct GeoOptions {
   std::vector<std::pair<std::string, double>> parameters;  ///< like gmsh -setnumber
-  bool recombine = true;                              ///< recombine triangles into quads
-  TrianglePolicy triangles = TrianglePolicy::accept;  ///< what to do with leftover triangles
-  double time_limit_seconds = 600;  ///< wall-time limit of the gmsh child; 0: none
-  double memory_limit_mib = 8192;   ///< address-space limit of the gmsh child (MiB); 0: none
+  bool recombine = true;                                   ///< recombine triangles into quads
+  TrianglePolicy triangles = TrianglePolicy::accept;       ///< what to do with leftover triangles
+  double time_limit_seconds = 600;                         ///< wall-time limit of the gmsh child; 0: none
+  double memory_limit_mib = 8192;                          ///< address-space limit of the gmsh child (MiB); 0: none
   /// Allow .geo commands that reach outside the mesh (SystemCall, Printf > file, Exit, Sleep,
   /// Save, Merge of a script, ...). They run arbitrary code; by default they are refused
   /// before gmsh runs.

@@ -22,8 +22,7 @@ namespace stagger {
 // the triangle (centre, x_k, x_{k+1}), V_k = (t_{k-1} + t_k) / 2. Returns the centre in cx, cy
 // and t_k in t; the same decomposition as corner_areas (equal up to round-off).
 template <int N = 0>
-[[gnu::always_inline]] inline void subzonal_side_triangles(const ZoneVertices& v, double& cx, double& cy,
-                                                          double* t) {
+[[gnu::always_inline]] inline void subzonal_side_triangles(const ZoneVertices& v, double& cx, double& cy, double* t) {
   const int n = N ? N : v.n;
   cx = 0, cy = 0;
   for (int k = 0; k < n; ++k) cx += v.x[k], cy += v.y[k];
@@ -57,9 +56,8 @@ inline void subzonal_masses(const ZoneVertices& v, double rho0, Subzones shape, 
 // rejects) gets no perturbation rather than an infinite one.
 template <int N = 0>
 [[gnu::always_inline]] inline void add_subzonal_pressure_forces(const ZoneVertices& v, const double* subzone_mass,
-                                                               double zone_mass, double area, double c2,
-                                                               double alpha, Subzones shape, double* fx,
-                                                               double* fy) {
+                                                                double zone_mass, double area, double c2, double alpha,
+                                                                Subzones shape, double* fx, double* fy) {
   const int n = N ? N : v.n;
   double cx, cy, t[kMaxZoneVertices], dp[kMaxZoneVertices];
   subzonal_side_triangles<N>(v, cx, cy, t);

@@ -38,8 +38,8 @@ struct ZoneForceInput {
   const double *grad_xx, *grad_xy, *grad_yx, *grad_yy;  // L(v^n) on x^n (strength)
   const double *burn, *lighting_time, *burn_length;     // (burn)
   const EnergySource* energy_source;                    // null: none
-  double dt_half;  // t_eval - t^n: dt/2 for the predictor state, 0 for an evaluation at t^n
-  double t_eval;   // time of the force evaluation
+  double dt_half;              // t_eval - t^n: dt/2 for the predictor state, 0 for an evaluation at t^n
+  double t_eval;               // time of the force evaluation
   const double* subzone_mass;  // constant subzonal masses per corner (subzonal hourglass options)
 };
 

@@ -44,6 +44,13 @@
 
 namespace stagger::meshgen {
 namespace {
+// Whether the child's address-space limit is set (not in AddressSanitizer builds, below): only
+// then can a crash be put down to the memory limit.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kMemoryLimitApplies = false;
+#else
+constexpr bool kMemoryLimitApplies = true;
+#endif
 
 // MSH element types (gmsh reference manual, "MSH file format").
 constexpr int kLine2 = 1, kTriangle3 = 2, kQuad4 = 3;
@@ -642,6 +649,10 @@ void out_of_memory() {
   ::close_range(4, ~0U, 0);         // no inherited files (outputs, checkpoints) stay open
   const rlimit no_core{0, 0};
   ::setrlimit(RLIMIT_CORE, &no_core);
+  // A crash in gmsh gets the kernel's verdict (SIGSEGV, not a sanitizer's abort), so that the
+  // message is the same in every build.
+  ::signal(SIGSEGV, SIG_DFL);
+  ::signal(SIGBUS, SIG_DFL);
   // AddressSanitizer reserves terabytes of address space for its shadow memory: an
   // address-space limit would fail every allocation, so sanitizer builds go without it.
 #if !defined(__SANITIZE_ADDRESS__)
@@ -762,7 +773,8 @@ PolygonSoup read_isolated(const ChildRun& run, const std::function<PolygonSoup()
     // A failed allocation can be as large as what is already used (a doubling array), so
     // growing through a good part of the room left is enough to suspect memory.
     const double room_mib = run.mib - start_vm_mib;
-    if (run.mib > 0 && (used_mib > 0.8 * run.mib || (room_mib > 0 && used_mib - start_vm_mib > 0.3 * room_mib)))
+    if (kMemoryLimitApplies && run.mib > 0 &&
+        (used_mib > 0.8 * run.mib || (room_mib > 0 && used_mib - start_vm_mib > 0.3 * room_mib)))
       why = "it probably ran out of memory (about " + limit_text(std::round(used_mib)) + " MiB of its " +
             limit_text(run.mib) + " MiB limit: scene key mesh.gmsh_memory_limit, stagger mesh --gmsh-memory-limit)";
     throw Error("gmsh crashed (signal " + std::to_string(signal) + ", " + strsignal(signal) + ") " + run.doing + " " +

@@ -250,19 +250,14 @@ class MpiCollective final : public Collective {
   }
 
   void sum(std::span<ExactSum> sums) override {
-    const std::size_t n = sums.size(), digits = ExactSum::kDigits;
-    std::vector<std::int64_t> in(n * digits), out(n * digits);
-    std::vector<double> special_in(n), special_out(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      std::copy(sums[i].digits().begin(), sums[i].digits().end(), in.begin() + i * digits);
-      special_in[i] = sums[i].special();
-    }
+    // One integer sum of every accumulator's words: exact, so any reduction order gives the same.
+    const std::size_t n = sums.size(), words = ExactSum::kWords;
+    std::vector<std::int64_t> in(n * words), out(n * words);
+    for (std::size_t i = 0; i < n; ++i)
+      std::copy(sums[i].words().begin(), sums[i].words().end(), in.begin() + i * words);
     MPI_Allreduce(in.data(), out.data(), static_cast<int>(in.size()), MPI_INT64_T, MPI_SUM, comm);
-    MPI_Allreduce(special_in.data(), special_out.data(), static_cast<int>(n), MPI_DOUBLE, MPI_SUM, comm);
-    for (std::size_t i = 0; i < n; ++i) {
-      std::copy(out.begin() + i * digits, out.begin() + (i + 1) * digits, sums[i].digits().begin());
-      sums[i].special() = special_out[i];
-    }
+    for (std::size_t i = 0; i < n; ++i)
+      std::copy(out.begin() + i * words, out.begin() + (i + 1) * words, sums[i].words().begin());
   }
 
   void exchange(Simulation::Impl& s) override {

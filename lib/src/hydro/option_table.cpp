@@ -350,6 +350,9 @@ const OptionTable<Strength>& strength_option_table() {
           required_number<&S::yield_stress>("yield_stress", above(0), "pressure",
                                             "von Mises yield stress Y (§7); a very large value gives an elastic "
                                             "material"),
+          number<&S::hardening_modulus>("hardening_modulus", at_least(0), "pressure",
+                                        "linear isotropic hardening H: the yield stress is Y + H eps_p with eps_p "
+                                        "the equivalent plastic strain (§7); 0 is perfectly plastic"),
       }};
   return table;
 }

@@ -42,6 +42,7 @@ ZoneModel zone_model(const Material& material) {
     m.strength = true;
     m.mu = material.strength->shear_modulus;
     m.yield = material.strength->yield_stress;
+    m.hardening = material.strength->hardening_modulus;
   }
   if (material.burn) {
     m.burn = true;
@@ -184,6 +185,7 @@ std::int64_t Simulation::Impl::zone_forces(const double* px, const double* py, d
                           data_or_null(sxx),
                           data_or_null(syy),
                           data_or_null(sxy),
+                          data_or_null(plastic),
                           data_or_null(grad_xx),
                           data_or_null(grad_xy),
                           data_or_null(grad_yx),

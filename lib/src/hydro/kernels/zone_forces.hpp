@@ -34,7 +34,7 @@ struct ZoneForceInput {
   // its own corners before it overwrites them.
   const double *f_prev_x, *f_prev_y;
   const double *zone_mass, *e;
-  const double *sxx, *syy, *sxy;                        // S^n (strength)
+  const double *sxx, *syy, *sxy, *plastic;              // S^n, eps_p^n (strength)
   const double *grad_xx, *grad_xy, *grad_yx, *grad_yy;  // L(v^n) on x^n (strength)
   const double *burn, *lighting_time, *burn_length;     // (burn)
   const EnergySource* energy_source;                    // null: none
@@ -117,7 +117,8 @@ std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, con
     if (m.strength) {
       // L(v^n) on x^n: kept from the end of the last step, bitwise what recomputing it gives.
       const VelocityGradient L{in.grad_xx[z], in.grad_xy[z], in.grad_yx[z], in.grad_yy[z]};
-      sh = predict_stress(objective, m.mu, m.yield, {in.sxx[z], in.syy[z], in.sxy[z]}, L, in.dt_half);
+      sh = predict_stress(objective, m.mu, m.yield, m.hardening, in.plastic[z], {in.sxx[z], in.syy[z], in.sxy[z]}, L,
+                          in.dt_half);
       out.sxx_half[z] = sh.xx, out.syy_half[z] = sh.yy, out.sxy_half[z] = sh.xy;
     }
     eos::PressureSound ps{};

@@ -64,8 +64,9 @@ struct BoundaryCondition {
   std::string partner;                            ///< periodic: the other tag
 };
 
-/// Artificial viscosity: zone-centred bulk q, or the edge-centred viscosity with limiter.
-enum class Viscosity { bulk, edge };
+/// Artificial viscosity: zone-centred bulk q, the edge-centred viscosity with limiter, or the
+/// tensor q from corner strain rates (docs/algorithm.md §19).
+enum class Viscosity { bulk, edge, tensor };
 /// Hourglass control (docs/algorithm.md §6): the paper's viscosity on the mode
 /// Gamma = (1,-1,1,-1), or the Flanagan-Belytschko projection (better on distorted quads),
 /// or subzonal pressures from constant subzone masses (any polygon; docs/algorithm.md §18)

@@ -17,11 +17,10 @@ metrics of the targets in docs/verification.md "Default numerics":
   Noh polar 25x50:   plateau and asymmetry as the reference reports them.
   Sedov 120x120:     density scatter at fixed radius, peak-density radius spread (relative to
                      the shock radius 1), shock radius error (docs/verification.md section 12).
-  Saltzman (t = 0.6): worst row plateau = max over the 10 rows of |mean rho - 4| / 4 over the
-                     row's zones with t + 0.03 < x < 4t/3 - 0.03 (between piston and shock).
+  Saltzman (t = 0.6): worst row = max over the 10 rows of |mean rho - 4| / 4 over the row's zones
+                     with 0.65 < x < 0.77 (docs/verification.md section 12).
   piston, Be shell:  the scene references' errors (shock/plateau, shell radii).
   audit:             the largest |energy audit| over the runs of the row.
-  cost:              Sedov 120x120 zone-cycles per second (one thread) relative to the first row.
 Runs are cached in WORK (default build/defaults/); --rerun repeats them.
 """
 import argparse
@@ -29,9 +28,10 @@ import json
 import math
 import os
 import re
+import resource
+import signal
 import subprocess
 import sys
-import time
 
 import numpy as np
 
@@ -51,11 +51,21 @@ def numerics(viscosity, hourglass, coefficient, extra=()):
 OPTIONS = {
     "bulk q + gamma 0.1 (old default)": numerics("bulk", "gamma", 0.1),
     "bulk q + triangles 2": numerics("bulk", "subzonal_triangles", 2),
-    "edge q + triangles 1": numerics("edge", "subzonal_triangles", 1),
+    "edge q + gamma 0.1": numerics("edge", "gamma", 0.1),
     "edge q + triangles 2": numerics("edge", "subzonal_triangles", 2),
+    "tensor q + gamma 0.1": numerics("tensor", "gamma", 0.1),
+    "tensor q + triangles 1": numerics("tensor", "subzonal_triangles", 1),
+    "tensor q + triangles 2 (default)": numerics("tensor", "subzonal_triangles", 2),
 }
 
 CHECKS = ["numerics.check_corner_areas=true"]
+# A run needing more CPU time than this (seconds, one thread) is stopped and reported as such: the
+# bulk q on the polar Noh takes 236 000 cycles (docs/verification.md section 2).
+TIMEOUT = 300
+
+
+def limit_cpu():
+    resource.setrlimit(resource.RLIMIT_CPU, (TIMEOUT, TIMEOUT + 5))
 # problem -> (scene, extra overrides)
 PROBLEMS = {
     "sod": ("sod", ["mesh.refine=4", "output.dump_interval=0"]),
@@ -76,16 +86,21 @@ def run(build, work, problem, option, rerun):
     scene, extra = PROBLEMS[problem]
     out = os.path.join(work, problem, slug(option))
     summary = os.path.join(out, "summary.json")
-    if rerun or not os.path.exists(summary):
+    timeout = os.path.join(out, "timeout.txt")
+    if rerun or not (os.path.exists(summary) or os.path.exists(timeout)):
+        if os.path.exists(timeout):
+            os.remove(timeout)
         cmd = [os.path.join(build, "bin", "stagger"), "run", os.path.join(SCENES, scene + ".toml"), "--out", out,
                "--quiet", "--threads", "1"]
         for s in extra + CHECKS + OPTIONS[option]:
             cmd += ["--set", s]
-        start = time.time()
-        subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        if os.path.exists(summary):
-            with open(os.path.join(out, "wall_seconds.txt"), "w") as f:
-                f.write(f"{time.time() - start}\n")
+        result = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, preexec_fn=limit_cpu)
+        if result.returncode in (-signal.SIGXCPU, -signal.SIGKILL):
+            os.makedirs(out, exist_ok=True)
+            with open(timeout, "w") as f:
+                f.write(f"{TIMEOUT}\n")
+    if os.path.exists(timeout):
+        return out, "timeout"
     if not os.path.exists(summary):
         return out, None
     return out, json.load(open(summary))
@@ -94,19 +109,21 @@ def run(build, work, problem, option, rerun):
 def status_of(s):
     if s is None:
         return "failed"
+    if s == "timeout":
+        return f"> {TIMEOUT} s CPU"
     if s["status"] == "completed":
         return "ok"
     reached = re.search(r"t = ([0-9.eE+-]+)", s["status"])
     return f"stopped t={float(reached.group(1)):.3g}" if reached else "stopped"
 
 
-def saltzman_rows(arrays, t):
+def saltzman_rows(arrays):
     cx, _, _, _, _ = zones(arrays)
     rho = arrays["density"]
-    row = np.arange(len(rho)) // 100
+    row = np.arange(len(rho)) // 100  # the generator numbers the zones row by row, 100 per row
     worst = 0.0
     for k in range(10):
-        sel = (row == k) & (cx > t + 0.03) & (cx < 4 * t / 3 - 0.03)
+        sel = (row == k) & (cx > 0.65) & (cx < 0.77)
         if np.any(sel):
             worst = max(worst, abs(float(np.mean(rho[sel])) / 4 - 1))
     return worst
@@ -114,7 +131,7 @@ def saltzman_rows(arrays, t):
 
 def metrics(problem, out, s):
     """A dict of formatted metrics of one run (or '-' when it did not complete)."""
-    if s is None or s["status"] != "completed":
+    if s is None or s == "timeout" or s["status"] != "completed":
         return {"status": status_of(s)}
     d = s.get("diagnostics", {})
     e = s.get("errors", {})
@@ -130,11 +147,8 @@ def metrics(problem, out, s):
     elif problem == "sedov":
         m["scatter"], m["spread"] = sedov_metrics(read_vtu(last_vtu(out)))
         m["shock"] = d.get("shock_radius_error", math.nan)
-        wall = os.path.join(out, "wall_seconds.txt")
-        if os.path.exists(wall):
-            m["zcps"] = 14400 * s["cycles"] / float(open(wall).read())
     elif problem == "saltzman":
-        m["rows"] = saltzman_rows(read_vtu(last_vtu(out)), s.get("time", 0.6))
+        m["rows"] = saltzman_rows(read_vtu(last_vtu(out)))
     m["summary"] = s
     return m
 
@@ -154,7 +168,7 @@ def main():
         for problem in args.only:
             out, s = run(args.build, work, problem, option, args.rerun)
             results[(option, problem)] = metrics(problem, out, s)
-            if args.dump and s is not None:
+            if args.dump and isinstance(s, dict):
                 print(option, problem, json.dumps({k: s.get(k) for k in ("status", "cycles", "diagnostics", "errors")}),
                       file=sys.stderr)
     print(table(results, args.options, args.only))
@@ -195,14 +209,6 @@ def table(results, options, problems):
         return f"{max(a):.1e}" if a else "-"
 
     cols.append(("max audit", audit))
-    if "sedov" in problems:
-        base = results[(options[0], "sedov")].get("zcps")
-
-        def cost(o):
-            z = results[(o, "sedov")].get("zcps")
-            return f"{base / z:.2f}" if z and base else "-"
-
-        cols.append(("Sedov cost (x row 1)", cost))
     lines = ["| options | " + " | ".join(c[0] for c in cols) + " |", "|---" * (len(cols) + 1) + "|"]
     for o in options:
         lines.append(f"| {o} | " + " | ".join(c[1](o) for c in cols) + " |")

@@ -1,4 +1,4 @@
-// Tensor viscosity (docs/algorithm.md §19): the corner forces of one zone conserve momentum
+// Tensor viscosity (docs/algorithm.md §4.1): the corner forces of one zone conserve momentum
 // and angular momentum, vanish under rigid motion, only dissipate, reduce to the bulk q in
 // one-dimensional compression; a Sedov run keeps its mirror symmetry about the diagonal and
 // its energy audit at round-off.

@@ -1,5 +1,5 @@
 #pragma once
-// Tensor artificial viscosity (docs/algorithm.md §19), after Campbell & Shashkov, "A tensor
+// Tensor artificial viscosity (docs/algorithm.md §4.1), after Campbell & Shashkov, "A tensor
 // artificial viscosity using a mimetic finite difference algorithm", J. Comput. Phys. 172
 // (2001): a viscous stress Q = mu S from the strain rate S of each corner of the zone, and
 // corner forces that are the adjoint of that corner gradient, so that the work is

@@ -146,7 +146,7 @@ std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, con
       out.c_half[z] = C;
     }
     stress_corner_forces(n, sh, pressure + qz, ax, ay, out.fx + b, out.fy + b);
-    // Or the tensor q (docs/algorithm.md §19), with the same coefficients and velocity.
+    // Or the tensor q (docs/algorithm.md §4.1), with the same coefficients and velocity.
     if (tensor_q)
       out.q[z] =
           add_tensor_viscosity_forces(n, v.x, v.y, wx, wy, area, Geometry::template characteristic_length<N>(v, area),

@@ -421,7 +421,7 @@ static std::string tangling_remedies(const HydroOptions& o) {
   else if (o.hourglass_coefficient < 2)
     tips.push_back("a larger numerics.hourglass_coefficient (2 is measured to hold a blast in a box)");
   if (o.cfl > 0.1) tips.push_back("a lower numerics.cfl");
-  if (o.viscosity == Viscosity::bulk && o.q1 < 2) tips.push_back("a larger numerics.q1");
+  if (o.viscosity != Viscosity::edge && o.q1 < 2) tips.push_back("a larger numerics.q1");
   tips.push_back("a finer or better-shaped mesh near the zone");
   std::string text = "try ";
   for (std::size_t i = 0; i < tips.size(); ++i) text += (i == 0 ? "" : i + 1 == tips.size() ? " or " : ", ") + tips[i];

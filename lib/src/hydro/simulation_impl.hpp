@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "hydro/kernels/viscosity_edge.hpp"  // EdgeContinuation
+#include "hydro/walls.hpp"
 #include "stagger/simulation.hpp"
 
 namespace stagger {
@@ -82,6 +83,8 @@ struct Simulation::Impl {
   std::vector<int> velocity_bcs;  // Problem::boundaries indices of velocity BCs
   std::vector<std::vector<Index>> periodic_groups;
   std::vector<PressureEdge> pressure_edges;
+  std::vector<WallEdge> wall_edges, wall_rays;  // walls fixed in space (boundary.cpp)
+  WallGrid wall_grid;
   std::vector<Index> external_points;  // points with external forces (pressure, sources)
   std::vector<double> ext_fx, ext_fy;  // applied-pressure force per point (when used)
   std::vector<double> src_fx, src_fy;  // momentum-source force per point (when used)

@@ -400,6 +400,12 @@ bool Simulation::Impl::try_step(double dt) {
     if (failure_kind(failure) == kTangled) return false;
     throw_zone_failure(*this, failure, "at the end of the step");
   }
+  // No point through a wall (docs/algorithm.md §10): retried like a tangled zone.
+  if (find_wall_crossing(*this, dt) >= 0) {
+    have_previous_forces = false;
+    recompute_state();
+    return false;
+  }
 
   // 6 (work). Work of the constraints, applied pressures and sources, for the audit.
   account_boundary_work(dt);
@@ -470,12 +476,18 @@ void Simulation::Impl::step(double t_stop) {
       break;
     }
     if (attempt >= o.max_retries) {
-      // Report the tangled zone at the end of the last attempt.
+      // Report the tangled zone at the end of the last attempt, or the point through a wall.
       std::ostringstream msg;
+      const Index tangled = find_tangled_zone(dt_taken);
+      if (const Index p = tangled < 0 ? find_wall_crossing(*this, dt_taken) : -1; p >= 0) {
+        msg << "cycle " << cycle << ", t = " << t << ": " << describe_wall_crossing(*this, p, dt_taken)
+            << " even with dt = " << dt_taken << " after " << attempt << " retries (the mesh is folding against the "
+            << "wall; " << tangling_remedies(o) << ")";
+        throw Error(msg.str());
+      }
       msg << "cycle " << cycle << ", t = " << t
           << ": a zone tangled (non-positive area, crossing edges or a folded corner) even with dt = " << dt_taken
           << " after " << attempt << " retries";
-      const Index tangled = find_tangled_zone(dt_taken);
       if (tangled >= 0) msg << "; " << describe_zone(*this, tangled);
       msg << " (the mesh is folding there; " << tangling_remedies(o) << ")";
       throw Error(msg.str());

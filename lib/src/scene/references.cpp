@@ -99,8 +99,9 @@ SourceContext read_sources_section(Section& section, Problem& problem) {
 
 void read_verification_section(Section& section, const Problem& problem, const SourceContext& sources,
                                RunControl& control, VerificationSetup& setup) {
-  const std::string reference = section.choice("reference", {"shock_tube", "noh", "sedov", "saltzman", "taylor_green",
-                                                             "piston", "be_shell", "detonation", "accuracy"});
+  const std::string reference =
+      section.choice("reference", {"shock_tube", "noh", "sedov", "saltzman", "taylor_green", "piston", "be_shell",
+                                   "detonation", "accuracy", "taylor_bar"});
   setup.name = reference;
   if (reference == "shock_tube") {
     ShockTubeReference parameters;
@@ -187,6 +188,8 @@ void read_verification_section(Section& section, const Problem& problem, const S
       section.fail("reference", failure.what());
     }
     setup.parameters = parameters;
+  } else if (reference == "taylor_bar") {
+    control.reference = taylor_bar_reference();  // diagnostics only: no parameters
   } else {
     if (!sources.accuracy)
       section.fail("reference",

@@ -67,9 +67,12 @@ struct RezoneResult {
 // Scratch arrays reused between calls (sized on first use), so that the rezone allocates
 // nothing in the time loop after the first call.
 struct RezoneWorkspace {
+  std::vector<double> target;      // per corner: the functional's target constants (4 each)
+  std::vector<double> xs, ys;      // per point: the smoothed positions before relaxation
+  std::vector<double> arc;         // per point: slide points' arc length along the boundary
+  std::vector<double> move_limit;  // per point: max_move * shortest Lagrangian edge
   std::vector<double> weight;      // per point: relaxation actually applied
-  std::vector<std::uint8_t> flag;  // per zone / point marks of the validity guard
-  std::vector<double> move_limit;  // per point: max_move * shortest edge
+  std::vector<std::uint8_t> flag;  // per point: marks of the validity guard
 };
 
 // Classifies every point. `boundaries` are the problem's conditions (periodic tags are

@@ -339,6 +339,87 @@ TEST(Rezone, NeverReturnsAnInvalidMesh) {
   EXPECT_GT(nonconvex_inputs, 5);  // the test does exercise non-convex zones
 }
 
+TEST(Rezone, UnstructuredGmshMeshWithTriangles) {
+  // The blast box meshed by gmsh (triangles, and recombined quads): a perturbed copy
+  // gets smoother with both methods, stays valid, and its boundary points stay on the walls.
+  meshgen::GeoOptions go;
+  go.parameters = {{"n", 8}};
+  go.recombine = false;  // all triangles, then gmsh's recombined quads
+  const Mesh tri = build_mesh(meshgen::read_geo(std::string(STAGGER_SOURCE_DIR) + "/geometries/blast_box.geo", go));
+  go.recombine = true;
+  const Mesh quad = build_mesh(meshgen::read_geo(std::string(STAGGER_SOURCE_DIR) + "/geometries/blast_box.geo", go));
+  for (const Mesh* mesh : {&tri, &quad}) {
+    const RezoneConstraints rc = make_rezone_constraints(*mesh, {});
+    EXPECT_EQ(rc.num_fixed, 4);
+    const Positions lag = perturb_interior(*mesh, rc, 0.25, 1.0 / 8 / 2, 9);
+    ASSERT_EQ(crossing_zones(*mesh, lag.x, lag.y), 0);
+    for (const RezoneMethod m : {RezoneMethod::winslow, RezoneMethod::reference_jacobian}) {
+      RezoneOptions o;
+      o.method = m;
+      o.relaxation = 1;
+      o.iterations = 4;
+      const Rezoned r = run_rezone(*mesh, rc, o, lag);
+      EXPECT_EQ(crossing_zones(*mesh, r.pos.x, r.pos.y), 0);
+      const auto quality = [&](const Positions& p) {
+        return mesh_quality_summary(*mesh, QualityMeasure::reference_shape, p.x, p.y, mesh->x, mesh->y);
+      };
+      EXPECT_GT(quality(r.pos).mean, quality(lag).mean);
+      EXPECT_GT(quality(r.pos).worst, quality(lag).worst);
+      for (Index p = 0; p < mesh->num_points(); ++p) {
+        if (rc.kind[p] == RezonePointKind::interior) continue;
+        const double x = mesh->x[p], y = mesh->y[p];
+        if (x == 0 || x == 2) {
+          EXPECT_EQ(r.pos.x[p], x);
+        }
+        if (y == 0 || y == 1) {
+          EXPECT_EQ(r.pos.y[p], y);
+        }
+      }
+    }
+  }
+}
+
+TEST(Rezone, PolygonSoupWithHexagonsAndTriangles) {
+  // Rows of hexagons (two quads merged), quads, and triangles (quads split) in one mesh.
+  const int n = 8;
+  PolygonSoup grid = meshgen::rectangle(0, 1, 0, 1, n, n);
+  PolygonSoup soup;
+  soup.x = grid.x;
+  soup.y = grid.y;
+  soup.region_names = {"domain"};
+  const auto pt = [&](int i, int j) { return std::int64_t(j * (n + 1) + i); };
+  ASSERT_EQ(grid.x[pt(3, 2)], 3.0 / n);
+  ASSERT_EQ(grid.y[pt(3, 2)], 2.0 / n);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      if (j % 3 == 0 && i % 2 == 0) {
+        soup.add_polygon({pt(i, j), pt(i + 1, j), pt(i + 2, j), pt(i + 2, j + 1), pt(i + 1, j + 1), pt(i, j + 1)}, 0);
+        ++i;
+      } else if (j % 3 == 1) {
+        soup.add_polygon({pt(i, j), pt(i + 1, j), pt(i + 1, j + 1)}, 0);
+        soup.add_polygon({pt(i, j), pt(i + 1, j + 1), pt(i, j + 1)}, 0);
+      } else {
+        soup.add_polygon({pt(i, j), pt(i + 1, j), pt(i + 1, j + 1), pt(i, j + 1)}, 0);
+      }
+    }
+  const Mesh mesh = build_mesh(soup);
+  const RezoneConstraints rc = make_rezone_constraints(mesh, {});
+  const Positions lag = perturb_interior(mesh, rc, 0.25, 1.0 / n, 4);
+  ASSERT_EQ(crossing_zones(mesh, lag.x, lag.y), 0);
+  for (const RezoneMethod m : {RezoneMethod::winslow, RezoneMethod::reference_jacobian}) {
+    RezoneOptions o;
+    o.method = m;
+    o.relaxation = 1;
+    o.iterations = 4;
+    const Rezoned r = run_rezone(mesh, rc, o, lag);
+    EXPECT_EQ(crossing_zones(mesh, r.pos.x, r.pos.y), 0);
+    const auto quality = [&](const Positions& p) {
+      return mesh_quality_summary(mesh, QualityMeasure::reference_shape, p.x, p.y, mesh.x, mesh.y);
+    };
+    EXPECT_GT(quality(r.pos).mean, quality(lag).mean);
+  }
+}
+
 TEST(Rezone, QualityMeasures) {
   Mesh mesh = rectangle_mesh(4, 3, 2, 1);
   const QualitySummary sj = mesh_quality_summary(mesh, QualityMeasure::scaled_jacobian, mesh.x, mesh.y, {}, {});

@@ -413,10 +413,14 @@ TEST(Rezone, PolygonSoupWithHexagonsAndTriangles) {
     o.iterations = 4;
     const Rezoned r = run_rezone(mesh, rc, o, lag);
     EXPECT_EQ(crossing_zones(mesh, r.pos.x, r.pos.y), 0);
+    // reference_jacobian restores the reference shapes; Winslow pulls every zone toward its
+    // logical (regular) shape, so it is judged by the smallest corner angle instead.
+    const QualityMeasure measure =
+        m == RezoneMethod::winslow ? QualityMeasure::scaled_jacobian : QualityMeasure::reference_shape;
     const auto quality = [&](const Positions& p) {
-      return mesh_quality_summary(mesh, QualityMeasure::reference_shape, p.x, p.y, mesh.x, mesh.y);
+      return mesh_quality_summary(mesh, measure, p.x, p.y, mesh.x, mesh.y);
     };
-    EXPECT_GT(quality(r.pos).mean, quality(lag).mean);
+    EXPECT_GT(quality(r.pos).worst, quality(lag).worst);
   }
 }
 

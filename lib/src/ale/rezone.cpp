@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <string>
 
@@ -15,6 +16,11 @@
 
 namespace stagger {
 namespace {
+
+// |(x, y)| without std::hypot's overflow care (slow in glibc; lengths here are mesh-sized).
+[[gnu::always_inline]] inline double norm2(double x, double y) {
+  return std::sqrt(x * x + y * y);
+}
 
 // Per-corner constants of the functional F = N / D (docs/ale.md, "Rezone"):
 // with A = [u v] the corner's edge matrix (u to the next vertex, v to the previous one) and
@@ -140,6 +146,72 @@ ZoneVertices zone_vertices(const Mesh& mesh, Index z, const double* x, const dou
   return v;
 }
 
+// One Gauss-Seidel update of point p by the Winslow equations (docs/ale.md, "Rezone"):
+// with the one-ring's least-squares derivatives x_k = S_k - s_k x_0 (S_k the weighted sum over
+// the neighbours, s_k the weights' sum), the equation alpha x_xixi - 2 beta x_xieta +
+// gamma x_etaeta = 0 with the coefficients frozen at the current position is linear in x_0.
+// Interior points go to its solution; slide points to its projection on their boundary edge.
+void winslow_point(const RezoneConstraints& rc, Index p, RezonePointKind kind, const double* ea, const double* eb,
+                   double la, double lb, double lim, double x_lag, double y_lag, double* xs, double* ys, double& arc) {
+  const Index id = rc.stencil_id[p];
+  if (id < 0) return;
+  const Index b = rc.stencil_begin[p];
+  const int n = static_cast<int>(rc.stencil_begin[p + 1] - b);
+  const double* w = rc.stencil_weights.data() + rc.weights_begin[id];
+  double sx[5] = {0, 0, 0, 0, 0}, sy[5] = {0, 0, 0, 0, 0};
+  for (int i = 0; i < n; ++i) {
+    const Index q = rc.stencil_points[b + i];
+    const double xq = xs[q], yq = ys[q];
+    for (int k = 0; k < 5; ++k) {
+      sx[k] += w[5 * i + k] * xq;
+      sy[k] += w[5 * i + k] * yq;
+    }
+  }
+  const double* r = w + 5 * n;
+  const double x0 = xs[p], y0 = ys[p];
+  const double x_xi = sx[3] - r[3] * x0, x_eta = sx[4] - r[4] * x0;
+  const double y_xi = sy[3] - r[3] * y0, y_eta = sy[4] - r[4] * y0;
+  const double alpha = x_eta * x_eta + y_eta * y_eta, beta = x_xi * x_eta + y_xi * y_eta,
+               gamma = x_xi * x_xi + y_xi * y_xi;
+  const double den = alpha * r[0] - 2 * beta * r[1] + gamma * r[2];
+  if (!(den > 1e-12 * (alpha + gamma) * (std::abs(r[0]) + std::abs(r[2])))) return;
+  const double tx = (alpha * sx[0] - 2 * beta * sx[1] + gamma * sx[2]) / den;
+  const double ty = (alpha * sy[0] - 2 * beta * sy[1] + gamma * sy[2]) / den;
+  if (kind == RezonePointKind::interior) {
+    double dx = tx - x_lag, dy = ty - y_lag;
+    const double dist = norm2(dx, dy);
+    if (dist > lim) {
+      dx *= lim / dist;
+      dy *= lim / dist;
+    }
+    // Converged points stay bitwise (a uniform mesh is a fixed point, not a round-off walk).
+    if (!(norm2(x_lag + dx - x0, y_lag + dy - y0) > 1e-12 * lim)) return;
+    xs[p] = x_lag + dx;
+    ys[p] = y_lag + dy;
+    return;
+  }
+  // Slide: arc length sigma >= 0 along e_b, < 0 along e_a; the move from the current point
+  // toward the target, projected on the edge it would run along, stopping at the kink.
+  const double s_b = (tx - x0) * eb[0] + (ty - y0) * eb[1];
+  const double s_a = (tx - x0) * ea[0] + (ty - y0) * ea[1];
+  double sigma = arc;
+  if (sigma > 0 || (sigma == 0 && s_b > 0)) {
+    sigma = std::max(sigma + s_b, 0.0);
+  } else if (sigma < 0 || s_a > 0) {
+    sigma = std::min(sigma - s_a, 0.0);
+  }
+  sigma = std::clamp(sigma, -std::min(0.45 * la, lim), std::min(0.45 * lb, lim));
+  if (!(std::abs(sigma - arc) > 1e-12 * lim)) return;
+  arc = sigma;
+  if (sigma >= 0) {
+    xs[p] = x_lag + sigma * eb[0];
+    ys[p] = y_lag + sigma * eb[1];
+  } else {
+    xs[p] = x_lag - sigma * ea[0];
+    ys[p] = y_lag - sigma * ea[1];
+  }
+}
+
 void check_options(const RezoneOptions& o) {
   if (!(o.relaxation >= 0 && o.relaxation <= 1))
     throw Error("rezone: relaxation = " + std::to_string(o.relaxation) + " is outside [0, 1]");
@@ -154,6 +226,113 @@ void check_size(std::span<const double> s, Index n, const char* name, const Mesh
   if (static_cast<Index>(s.size()) != n)
     throw Error("rezone: " + std::string(name) + " has " + std::to_string(s.size()) + " entries, the mesh " +
                 mesh.source + " has " + std::to_string(n) + " points");
+}
+
+// The Winslow stencil of one point (Knupp 1999): its zones in counter-clockwise order, each
+// given an equal sector of the logical plane (2 pi / k around an interior point, pi / k at a
+// boundary point); a zone's two edge neighbours sit on the sector's sides at unit distance,
+// its other vertices where a regular polygon with that corner puts them (u + v for a quad).
+// Returns false if the zones do not form one fan (then the point gets no stencil).
+bool winslow_fan(const Mesh& mesh, Index p, std::vector<Index>& points, std::vector<double>& xi,
+                 std::vector<double>& eta, std::vector<int>& key) {
+  struct Fan {
+    Index corner, u, v;
+    int m;
+  };
+  Fan fan[64];
+  const Index cb = mesh.point_corner_begin[p], ce = mesh.point_corner_begin[p + 1];
+  const int k = static_cast<int>(ce - cb);
+  if (k == 0 || k > 64) return false;
+  for (int i = 0; i < k; ++i) {
+    const Index c = mesh.point_corners[cb + i], z = mesh.corner_zone[c];
+    const Index b = mesh.zone_corner_begin[z], e = mesh.zone_corner_begin[z + 1];
+    fan[i] = {c, mesh.corner_point[c + 1 == e ? b : c + 1], mesh.corner_point[c == b ? e - 1 : c - 1],
+              static_cast<int>(e - b)};
+    if (e - b > kMaxZoneVertices) return false;
+  }
+  // The first zone of an open fan is the one whose u no other zone has as v.
+  int start = 0;
+  bool closed = true;
+  for (int i = 0; i < k && closed; ++i) {
+    bool found = false;
+    for (int j = 0; j < k; ++j) found = found || fan[j].v == fan[i].u;
+    if (!found) {
+      start = i;
+      closed = false;
+    }
+  }
+  int order[64];
+  order[0] = start;
+  for (int t = 1; t < k; ++t) {
+    order[t] = -1;
+    for (int j = 0; j < k; ++j)
+      if (fan[j].u == fan[order[t - 1]].v) order[t] = j;
+    if (order[t] < 0) return false;
+  }
+  if (closed && fan[order[k - 1]].v != fan[order[0]].u) return false;
+  const double phi = (closed ? 2 : 1) * std::numbers::pi / k;
+  points.clear();
+  xi.clear();
+  eta.clear();
+  key.assign(1, closed ? 1 : 0);
+  // Logical offsets that are integers up to rounding (the quad fans: cos(pi/2)) are made
+  // exact, so that the weights reproduce a uniform mesh to the last bit where they can.
+  const auto snap = [](double v) { return std::abs(v - std::round(v)) < 1e-12 ? std::round(v) : v; };
+  const auto add = [&](Index q, double a, double b) {
+    a = snap(a);
+    b = snap(b);
+    points.push_back(q);
+    xi.push_back(a);
+    eta.push_back(b);
+  };
+  for (int t = 0; t < k; ++t) {
+    const Fan& f = fan[order[t]];
+    key.push_back(f.m);
+    const double ux = std::cos(t * phi), uy = std::sin(t * phi);
+    const double vx = std::cos((t + 1) * phi), vy = std::sin((t + 1) * phi);
+    add(f.u, ux, uy);
+    const Index z = mesh.corner_zone[f.corner], b = mesh.zone_corner_begin[z];
+    if (f.m == 4) {
+      add(mesh.corner_point[b + (f.corner - b + 2) % 4], ux + vx, uy + vy);
+    } else if (f.m > 4) {
+      // Regular m-gon with vertex 0 at the origin, vertex 1 at (1, 0), counter-clockwise;
+      // the linear map taking its corner edges to (u, v) places the other vertices.
+      const double ext = 2 * std::numbers::pi / f.m, alpha = std::numbers::pi - ext;
+      const double ca = std::cos(alpha), sa = std::sin(alpha);
+      double rx = 1, ry = 0;
+      for (int j = 2; j <= f.m - 2; ++j) {
+        rx += std::cos((j - 1) * ext);
+        ry += std::sin((j - 1) * ext);
+        // (rx, ry) = a e1 + c (ca, sa)  ->  a u + c v.
+        const double c = ry / sa, a = rx - c * ca;
+        add(mesh.corner_point[b + (f.corner - b + j) % f.m], a * ux + c * vx, a * uy + c * vy);
+      }
+    }
+    if (!closed && t == k - 1) add(f.v, vx, vy);
+  }
+  return true;
+}
+
+// Least-squares derivative weights of a logical layout: x_i - x_0 ~ a x_xi + b x_eta +
+// a^2/2 x_xixi + a b x_xieta + b^2/2 x_etaeta. A small penalty on the second derivatives
+// makes under-determined fans (few neighbours) solvable and leaves linear maps exact (their
+// second derivatives are zero, so the penalty costs nothing there).
+void winslow_weights(const std::vector<double>& xi, const std::vector<double>& eta, std::vector<double>& out) {
+  const int n = static_cast<int>(xi.size());
+  Eigen::MatrixXd a(n, 5);
+  for (int i = 0; i < n; ++i) a.row(i) << xi[i], eta[i], 0.5 * xi[i] * xi[i], xi[i] * eta[i], 0.5 * eta[i] * eta[i];
+  Eigen::Matrix<double, 5, 5> m = a.transpose() * a;
+  for (int k = 2; k < 5; ++k) m(k, k) += 1e-4;
+  const Eigen::MatrixXd pinv = m.ldlt().solve(a.transpose());  // 5 x n
+  // Stored per neighbour as (xixi, xieta, etaeta, xi, eta), then the row sums.
+  const int row[5] = {2, 3, 4, 0, 1};
+  double sum[5] = {0, 0, 0, 0, 0};
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < 5; ++k) {
+      out.push_back(pinv(row[k], i));
+      sum[k] += pinv(row[k], i);
+    }
+  for (int k = 0; k < 5; ++k) out.push_back(sum[k]);
 }
 
 }  // namespace
@@ -239,6 +418,26 @@ RezoneConstraints make_rezone_constraints(const Mesh& mesh, std::span<const Boun
       ++rc.num_interior;
     }
   }
+
+  // Winslow stencils of the points that may move; fans with the same zone sizes share weights.
+  rc.stencil_id.assign(np, -1);
+  rc.stencil_begin.assign(1, 0);
+  std::map<std::vector<int>, Index> known;
+  std::vector<Index> fan_points;
+  std::vector<double> xi, eta;
+  std::vector<int> key;
+  for (Index p = 0; p < np; ++p) {
+    if (rc.kind[p] != RezonePointKind::fixed && winslow_fan(mesh, p, fan_points, xi, eta, key)) {
+      const auto [it, inserted] = known.try_emplace(key, static_cast<Index>(known.size()));
+      if (inserted) {
+        winslow_weights(xi, eta, rc.stencil_weights);
+        rc.weights_begin.push_back(static_cast<Index>(rc.stencil_weights.size()));
+      }
+      rc.stencil_id[p] = it->second;
+      rc.stencil_points.insert(rc.stencil_points.end(), fan_points.begin(), fan_points.end());
+    }
+    rc.stencil_begin.push_back(static_cast<Index>(rc.stencil_points.size()));
+  }
   return rc;
 }
 
@@ -268,25 +467,21 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& rc, const RezoneO
 
   // Corner targets (x_ref is constant, but recomputing keeps the call pure; O(corners)).
   const Index nc = mesh.num_corners();
-  ws.target.resize(4 * static_cast<std::size_t>(nc));
   ws.xs.assign(x_lag.begin(), x_lag.end());
   ws.ys.assign(y_lag.begin(), y_lag.end());
   ws.arc.assign(np, 0.0);
   ws.move_limit.assign(np, std::numeric_limits<double>::infinity());
   ws.weight.assign(np, options.relaxation);
   ws.flag.assign(std::max(np, nz), 0);
-  CornerTarget regular[kMaxZoneVertices + 1];
-  for (int m = 3; m <= kMaxZoneVertices; ++m) regular[m] = regular_target(m);
+  if (use_reference) ws.target.resize(4 * static_cast<std::size_t>(nc));
   for (Index z = 0; z < nz; ++z) {
     const Index b = mesh.zone_corner_begin[z], e = mesh.zone_corner_begin[z + 1];
     const int m = static_cast<int>(e - b);
-    for (Index c = b; c < e; ++c) {
+    for (Index c = b; c < e && use_reference; ++c) {
       const Index p0 = mesh.corner_point[c], p1 = mesh.corner_point[c + 1 == e ? b : c + 1],
                   p2 = mesh.corner_point[c == b ? e - 1 : c - 1];
-      CornerTarget t = m <= kMaxZoneVertices ? regular[m] : CornerTarget{};
-      if (use_reference)
-        t = reference_target(x_ref[p1] - x_ref[p0], y_ref[p1] - y_ref[p0], x_ref[p2] - x_ref[p0], y_ref[p2] - y_ref[p0],
-                             m);
+      const CornerTarget t = reference_target(x_ref[p1] - x_ref[p0], y_ref[p1] - y_ref[p0], x_ref[p2] - x_ref[p0],
+                                              y_ref[p2] - y_ref[p0], m);
       ws.target[4 * c] = t.k11;
       ws.target[4 * c + 1] = t.k12;
       ws.target[4 * c + 2] = t.k22;
@@ -295,7 +490,7 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& rc, const RezoneO
     // Each point moves at most max_move times its shortest Lagrangian edge.
     for (Index c = b; c < e; ++c) {
       const Index p = mesh.corner_point[c], q = mesh.corner_point[c + 1 == e ? b : c + 1];
-      const double len = std::hypot(x_lag[q] - x_lag[p], y_lag[q] - y_lag[p]);
+      const double len = norm2(x_lag[q] - x_lag[p], y_lag[q] - y_lag[p]);
       ws.move_limit[p] = std::min(ws.move_limit[p], options.max_move * len);
       ws.move_limit[q] = std::min(ws.move_limit[q], options.max_move * len);
     }
@@ -308,8 +503,8 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& rc, const RezoneO
     const auto [a, b] = rc.boundary_neighbours[p];
     const double ax = x_lag[a] - x_lag[p], ay = y_lag[a] - y_lag[p];
     const double bx = x_lag[b] - x_lag[p], by = y_lag[b] - y_lag[p];
-    *la = std::hypot(ax, ay);
-    *lb = std::hypot(bx, by);
+    *la = norm2(ax, ay);
+    *lb = norm2(bx, by);
     if (!(*la > 0 && *lb > 0)) return false;
     ea[0] = ax / *la, ea[1] = ay / *la, eb[0] = bx / *lb, eb[1] = by / *lb;
     return -(ea[0] * eb[0] + ea[1] * eb[1]) >= cos_corner;
@@ -324,6 +519,10 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& rc, const RezoneO
       if (kind == RezonePointKind::fixed) continue;
       double ea[2], eb[2], la = 0, lb = 0;
       if (kind == RezonePointKind::slide && !slide_geometry(p, ea, eb, &la, &lb)) continue;
+      if (!use_reference) {
+        winslow_point(rc, p, kind, ea, eb, la, lb, ws.move_limit[p], x_lag[p], y_lag[p], xs, ys, ws.arc[p]);
+        continue;
+      }
 
       // The corners around p: in each zone, the corner at p and its two neighbours.
       lp.count = 0;
@@ -379,12 +578,12 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& rc, const RezoneO
         sy = step(1);
         // Keep within the move limit around the Lagrangian position.
         const double dx = px + sx - x_lag[p], dy = py + sy - y_lag[p];
-        const double dist = std::hypot(dx, dy);
+        const double dist = norm2(dx, dy);
         if (dist > lim) {
           sx = x_lag[p] + dx * (lim / dist) - px;
           sy = y_lag[p] + dy * (lim / dist) - py;
         }
-        if (!(std::hypot(sx, sy) > 1e-10 * lim)) continue;
+        if (!(norm2(sx, sy) > 1e-10 * lim)) continue;
       } else {
         // Along the old boundary: arc length sigma >= 0 toward b, < 0 toward a.
         const Eigen::Vector2d db(eb[0], eb[1]), da(-ea[0], -ea[1]);
@@ -469,7 +668,7 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& rc, const RezoneO
     }
   }
   for (Index p = 0; p < np; ++p)
-    result.max_displacement = std::max(result.max_displacement, std::hypot(x_new[p] - x_lag[p], y_new[p] - y_lag[p]));
+    result.max_displacement = std::max(result.max_displacement, norm2(x_new[p] - x_lag[p], y_new[p] - y_lag[p]));
   return result;
 }
 
@@ -486,7 +685,7 @@ double zone_quality_impl(const Mesh& mesh, Index z, QualityMeasure measure, cons
     const double ux = x[p1] - x[p0], uy = y[p1] - y[p0], vx = x[p2] - x[p0], vy = y[p2] - y[p0];
     double value;
     if (measure == QualityMeasure::scaled_jacobian) {
-      const double lu = std::hypot(ux, uy), lv = std::hypot(vx, vy);
+      const double lu = norm2(ux, uy), lv = norm2(vx, vy);
       value = lu > 0 && lv > 0 ? (ux * vy - uy * vx) / (lu * lv) : 0.0;
     } else {
       const CornerTarget t = reference_target(xr[p1] - xr[p0], yr[p1] - yr[p0], xr[p2] - xr[p0], yr[p2] - yr[p0], m);

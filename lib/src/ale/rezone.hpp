@@ -14,13 +14,16 @@ namespace stagger {
 
 // How the smooth target positions are found (docs/ale.md, "Rezone").
 enum class RezoneMethod {
-  // Discrete Winslow (equipotential) smoothing: minimises the Brackbill-Saltzman smoothness
-  // functional sum_corners |J|^2 / det J with J the corner Jacobian mapped from a regular
-  // polygon's corner. A uniform Cartesian mesh is a fixed point.
+  // Winslow (equipotential) smoothing: Gauss-Seidel sweeps of the Winslow equations
+  // alpha x_xixi - 2 beta x_xieta + gamma x_etaeta = 0, the derivatives fitted by least
+  // squares over each point's one-ring laid out in a local logical space (Knupp 1999). A
+  // uniform Cartesian mesh is a fixed point. The fast default.
   winslow,
-  // The same functional with J mapped from the corner of the reference (initial) mesh
-  // (target-matrix form): the initial mesh is a fixed point, so graded and unstructured
-  // meshes keep their own shape instead of being pulled toward squares.
+  // Point-by-point minimisation of the corner functional sum |T|^2 / det T, T the corner
+  // Jacobian relative to the reference (initial) mesh's corner (Brackbill-Saltzman smoothness
+  // in target-matrix form): the initial mesh is a fixed point, so graded and unstructured
+  // meshes keep their own shape; every step keeps the zones around the point valid. Costs
+  // several times more per sweep than winslow.
   reference_jacobian,
 };
 
@@ -38,6 +41,15 @@ struct RezoneConstraints {
   // Slide points: their two neighbours along the boundary (point ids), else -1.
   std::vector<std::array<Index, 2>> boundary_neighbours;
   Index num_interior = 0, num_slide = 0, num_fixed = 0;
+  // Winslow stencils: the one-ring of point p (its zones' other vertices, counter-clockwise)
+  // is stencil_points[stencil_begin[p] .. stencil_begin[p + 1]); stencil_id[p] indexes the
+  // least-squares derivative weights of its local logical layout (-1: no stencil, the point
+  // does not move under Winslow). Points with the same zone sizes around them share weights.
+  std::vector<Index> stencil_begin{0}, stencil_points, stencil_id;
+  // Per stencil: offset into stencil_weights; per neighbour 3 weights (x_xixi, x_xieta,
+  // x_etaeta of the logical second derivatives) and 2 (x_xi, x_eta), then the 5 row sums.
+  std::vector<Index> weights_begin{0};
+  std::vector<double> stencil_weights;
 };
 
 // Rezone options. The defaults are those of the [ale] scene section (docs/scenes.md).

@@ -146,6 +146,19 @@ ZoneVertices zone_vertices(const Mesh& mesh, Index z, const double* x, const dou
   return v;
 }
 
+// The weighted sums S_k of a stencil; N > 0 fixes the neighbour count at compile time.
+template <int N>
+[[gnu::always_inline]] inline void stencil_sums(const Index* points, int n, const double* w, const double* xs,
+                                                const double* ys, double* sx, double* sy) {
+  for (int i = 0; i < (N ? N : n); ++i) {
+    const double xq = xs[points[i]], yq = ys[points[i]];
+    for (int k = 0; k < 5; ++k) {
+      sx[k] += w[5 * i + k] * xq;
+      sy[k] += w[5 * i + k] * yq;
+    }
+  }
+}
+
 // One Gauss-Seidel update of point p by the Winslow equations (docs/ale.md, "Rezone"):
 // with the one-ring's least-squares derivatives x_k = S_k - s_k x_0 (S_k the weighted sum over
 // the neighbours, s_k the weights' sum), the equation alpha x_xixi - 2 beta x_xieta +
@@ -159,13 +172,10 @@ void winslow_point(const RezoneConstraints& rc, Index p, RezonePointKind kind, c
   const int n = static_cast<int>(rc.stencil_begin[p + 1] - b);
   const double* w = rc.stencil_weights.data() + rc.weights_begin[id];
   double sx[5] = {0, 0, 0, 0, 0}, sy[5] = {0, 0, 0, 0, 0};
-  for (int i = 0; i < n; ++i) {
-    const Index q = rc.stencil_points[b + i];
-    const double xq = xs[q], yq = ys[q];
-    for (int k = 0; k < 5; ++k) {
-      sx[k] += w[5 * i + k] * xq;
-      sy[k] += w[5 * i + k] * yq;
-    }
+  if (n == 8) {
+    stencil_sums<8>(rc.stencil_points.data() + b, 8, w, xs, ys, sx, sy);  // interior point of a quad mesh
+  } else {
+    stencil_sums<0>(rc.stencil_points.data() + b, n, w, xs, ys, sx, sy);
   }
   const double* r = w + 5 * n;
   const double x0 = xs[p], y0 = ys[p];

@@ -60,7 +60,7 @@ struct RezoneOptions {
   double relaxation = 0.5;
   // Gauss-Seidel sweeps of the point-by-point minimisation (each sweep visits every free
   // point once, one safeguarded Newton step). >= 0; 0 also returns the Lagrangian mesh.
-  int iterations = 2;
+  int iterations = 1;
   // A boundary point slides only where its two boundary edges turn by at most this angle
   // (at the Lagrangian positions); elsewhere it is a corner and stays. Degrees, in [0, 90).
   double corner_angle_degrees = 0.5;

@@ -448,6 +448,36 @@ RezoneConstraints make_rezone_constraints(const Mesh& mesh, std::span<const Boun
     }
     rc.stencil_begin.push_back(static_cast<Index>(rc.stencil_points.size()));
   }
+
+  // Greedy colouring of the points that may move: no two points of one colour share a zone.
+  std::vector<int> colour(np, -1);
+  std::vector<Index> seen;  // seen[c] == p: colour c is taken by a zone neighbour of p
+  int colours = 0;
+  for (Index p = 0; p < np; ++p) {
+    if (rc.kind[p] == RezonePointKind::fixed) continue;
+    for (Index i = mesh.point_corner_begin[p]; i < mesh.point_corner_begin[p + 1]; ++i) {
+      const Index z = mesh.corner_zone[mesh.point_corners[i]];
+      for (Index c = mesh.zone_corner_begin[z]; c < mesh.zone_corner_begin[z + 1]; ++c) {
+        const int k = colour[mesh.corner_point[c]];
+        if (k >= 0) seen[k] = p;
+      }
+    }
+    int k = 0;
+    while (k < colours && seen[k] == p) ++k;
+    if (k == colours) {
+      ++colours;
+      seen.push_back(-1);
+    }
+    colour[p] = k;
+  }
+  rc.colour_begin.assign(colours + 1, 0);
+  for (Index p = 0; p < np; ++p)
+    if (colour[p] >= 0) ++rc.colour_begin[colour[p] + 1];
+  for (int k = 0; k < colours; ++k) rc.colour_begin[k + 1] += rc.colour_begin[k];
+  rc.colour_points.resize(rc.colour_begin[colours]);
+  std::vector<Index> fill(rc.colour_begin.begin(), rc.colour_begin.end() - 1);
+  for (Index p = 0; p < np; ++p)
+    if (colour[p] >= 0) rc.colour_points[fill[colour[p]]++] = p;
   return rc;
 }
 
@@ -522,126 +552,133 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& rc, const RezoneO
 
   double* xs = ws.xs.data();
   double* ys = ws.ys.data();
-  LocalProblem lp;
-  for (int sweep = 0; sweep < options.iterations; ++sweep) {
-    for (Index p = 0; p < np; ++p) {
-      const RezonePointKind kind = rc.kind[p];
-      if (kind == RezonePointKind::fixed) continue;
-      double ea[2], eb[2], la = 0, lb = 0;
-      if (kind == RezonePointKind::slide && !slide_geometry(p, ea, eb, &la, &lb)) continue;
-      if (!use_reference) {
-        winslow_point(rc, p, kind, ea, eb, la, lb, ws.move_limit[p], x_lag[p], y_lag[p], xs, ys, ws.arc[p]);
-        continue;
-      }
+  // One point's update. Points of one colour share no zone (make_rezone_constraints), so
+  // they are independent: a colour is one parallel loop, and the result does not depend on
+  // the number of threads.
+  const auto update = [&](Index p) {
+    const RezonePointKind kind = rc.kind[p];
+    if (kind == RezonePointKind::fixed) return;
+    double ea[2] = {0, 0}, eb[2] = {0, 0}, la = 0, lb = 0;
+    if (kind == RezonePointKind::slide && !slide_geometry(p, ea, eb, &la, &lb)) return;
+    if (!use_reference) {
+      winslow_point(rc, p, kind, ea, eb, la, lb, ws.move_limit[p], x_lag[p], y_lag[p], xs, ys, ws.arc[p]);
+      return;
+    }
 
-      // The corners around p: in each zone, the corner at p and its two neighbours.
-      lp.count = 0;
-      double dmin = std::numeric_limits<double>::infinity(), dmax = 0;
-      const Index cb = mesh.point_corner_begin[p], ce = mesh.point_corner_begin[p + 1];
-      bool too_many = false;
-      for (Index i = cb; i < ce && !too_many; ++i) {
-        const Index cp = mesh.point_corners[i], z = mesh.corner_zone[cp];
-        const Index b = mesh.zone_corner_begin[z], e = mesh.zone_corner_begin[z + 1];
-        const Index prev = cp == b ? e - 1 : cp - 1, next = cp + 1 == e ? b : cp + 1;
-        for (const Index c : {prev, cp, next}) {
-          if (lp.count == kMaxLocal) {
-            too_many = true;
-            break;
-          }
-          LocalCorner& l = lp.c[lp.count++];
-          l.p0 = mesh.corner_point[c];
-          l.p1 = mesh.corner_point[c + 1 == e ? b : c + 1];
-          l.p2 = mesh.corner_point[c == b ? e - 1 : c - 1];
-          l.target = {ws.target[4 * c], ws.target[4 * c + 1], ws.target[4 * c + 2], ws.target[4 * c + 3]};
-          l.alpha = c == cp ? -1.0 : (c == prev ? 1.0 : 0.0);
-          l.beta = c == cp ? -1.0 : (c == next ? 1.0 : 0.0);
-          const double d =
-              corner_value(l.target, xs[l.p1] - xs[l.p0], ys[l.p1] - ys[l.p0], xs[l.p2] - xs[l.p0], ys[l.p2] - ys[l.p0])
-                  .d;
-          dmin = std::min(dmin, d);
-          dmax = std::max(dmax, std::abs(d));
+    // The corners around p: in each zone, the corner at p and its two neighbours.
+    LocalProblem lp;
+    lp.count = 0;
+    double dmin = std::numeric_limits<double>::infinity(), dmax = 0;
+    const Index cb = mesh.point_corner_begin[p], ce = mesh.point_corner_begin[p + 1];
+    bool too_many = false;
+    for (Index i = cb; i < ce && !too_many; ++i) {
+      const Index cp = mesh.point_corners[i], z = mesh.corner_zone[cp];
+      const Index b = mesh.zone_corner_begin[z], e = mesh.zone_corner_begin[z + 1];
+      const Index prev = cp == b ? e - 1 : cp - 1, next = cp + 1 == e ? b : cp + 1;
+      for (const Index c : {prev, cp, next}) {
+        if (lp.count == kMaxLocal) {
+          too_many = true;
+          break;
         }
-      }
-      if (too_many || !(dmax > 0)) continue;
-      // Regularise only where a corner is not convex (then the plain functional has no barrier).
-      const double delta = dmin > 0 ? 0.0 : 1e-2 * dmax;
-
-      Eigen::Vector2d g;
-      Eigen::Matrix2d h;
-      local_derivatives(lp, xs, ys, delta, g, h);
-      const double px = xs[p], py = ys[p];
-      const double f0 = local_value(lp, p, px, py, xs, ys, delta);
-      const double lim = ws.move_limit[p];
-
-      // Candidate position as a function of the step fraction t in (0, 1].
-      double sx = 0, sy = 0;  // interior: full step
-      double sigma0 = ws.arc[p], sigma1 = sigma0;
-      if (kind == RezonePointKind::interior) {
-        Eigen::Matrix2d hs = h;
-        const double tr = h.trace();
-        const double disc = std::sqrt(0.25 * (h(0, 0) - h(1, 1)) * (h(0, 0) - h(1, 1)) + h(0, 1) * h(0, 1));
-        const double lmin = 0.5 * tr - disc, lmax = 0.5 * tr + disc;
-        if (!(lmin > 1e-8 * std::abs(lmax)))
-          hs += (std::abs(lmin) + 1e-3 * std::abs(lmax) + 1e-300) * Eigen::Matrix2d::Identity();
-        const Eigen::Vector2d step = hs.llt().solve(-g);
-        sx = step(0);
-        sy = step(1);
-        // Keep within the move limit around the Lagrangian position.
-        const double dx = px + sx - x_lag[p], dy = py + sy - y_lag[p];
-        const double dist = norm2(dx, dy);
-        if (dist > lim) {
-          sx = x_lag[p] + dx * (lim / dist) - px;
-          sy = y_lag[p] + dy * (lim / dist) - py;
-        }
-        if (!(norm2(sx, sy) > 1e-10 * lim)) continue;
-      } else {
-        // Along the old boundary: arc length sigma >= 0 toward b, < 0 toward a.
-        const Eigen::Vector2d db(eb[0], eb[1]), da(-ea[0], -ea[1]);
-        const bool toward_b = sigma0 > 0 || (sigma0 == 0 && g.dot(db) < 0);
-        const Eigen::Vector2d d = toward_b ? db : da;
-        const double gd = g.dot(d), hd = d.dot(h * d);
-        const double s = hd > 0 ? -gd / hd : -gd / (h.norm() + 1e-300);
-        if (sigma0 == 0 && (toward_b ? !(s > 0) : !(s < 0))) continue;
-        sigma1 = sigma0 + s;
-        if ((sigma0 > 0 && sigma1 < 0) || (sigma0 < 0 && sigma1 > 0)) sigma1 = 0;  // stop at the kink
-        sigma1 = std::clamp(sigma1, -std::min(0.45 * la, lim), std::min(0.45 * lb, lim));
-        if (!(std::abs(sigma1 - sigma0) > 1e-10 * lim)) continue;
-      }
-      const auto position = [&](double t, double* qx, double* qy) {
-        if (kind == RezonePointKind::interior) {
-          *qx = px + t * sx;
-          *qy = py + t * sy;
-        } else {
-          const double sg = sigma0 + t * (sigma1 - sigma0);
-          if (sg >= 0) {
-            *qx = x_lag[p] + sg * eb[0];
-            *qy = y_lag[p] + sg * eb[1];
-          } else {
-            *qx = x_lag[p] - sg * ea[0];
-            *qy = y_lag[p] - sg * ea[1];
-          }
-        }
-      };
-      // Backtracking: accept the first fraction that lowers F and keeps every zone around p
-      // as valid as it was.
-      for (double t = 1; t > 0.1; t *= 0.5) {
-        double qx, qy;
-        position(t, &qx, &qy);
-        if (!(local_value(lp, p, qx, qy, xs, ys, delta) < f0)) continue;
-        bool ok = true;
-        for (Index i = cb; i < ce && ok; ++i) {
-          const Index z = mesh.corner_zone[mesh.point_corners[i]];
-          if (zone_crosses(zone_vertices(mesh, z, xs, ys, p, qx, qy)) && !zone_crosses(zone_vertices(mesh, z, xs, ys)))
-            ok = false;
-        }
-        if (!ok) continue;
-        xs[p] = qx;
-        ys[p] = qy;
-        if (kind == RezonePointKind::slide) ws.arc[p] = sigma0 + t * (sigma1 - sigma0);
-        break;
+        LocalCorner& l = lp.c[lp.count++];
+        l.p0 = mesh.corner_point[c];
+        l.p1 = mesh.corner_point[c + 1 == e ? b : c + 1];
+        l.p2 = mesh.corner_point[c == b ? e - 1 : c - 1];
+        l.target = {ws.target[4 * c], ws.target[4 * c + 1], ws.target[4 * c + 2], ws.target[4 * c + 3]};
+        l.alpha = c == cp ? -1.0 : (c == prev ? 1.0 : 0.0);
+        l.beta = c == cp ? -1.0 : (c == next ? 1.0 : 0.0);
+        const double d =
+            corner_value(l.target, xs[l.p1] - xs[l.p0], ys[l.p1] - ys[l.p0], xs[l.p2] - xs[l.p0], ys[l.p2] - ys[l.p0])
+                .d;
+        dmin = std::min(dmin, d);
+        dmax = std::max(dmax, std::abs(d));
       }
     }
-  }
+    if (too_many || !(dmax > 0)) return;
+    // Regularise only where a corner is not convex (then the plain functional has no barrier).
+    const double delta = dmin > 0 ? 0.0 : 1e-2 * dmax;
+
+    Eigen::Vector2d g;
+    Eigen::Matrix2d h;
+    local_derivatives(lp, xs, ys, delta, g, h);
+    const double px = xs[p], py = ys[p];
+    const double f0 = local_value(lp, p, px, py, xs, ys, delta);
+    const double lim = ws.move_limit[p];
+
+    // Candidate position as a function of the step fraction t in (0, 1].
+    double sx = 0, sy = 0;  // interior: full step
+    double sigma0 = ws.arc[p], sigma1 = sigma0;
+    if (kind == RezonePointKind::interior) {
+      Eigen::Matrix2d hs = h;
+      const double tr = h.trace();
+      const double disc = std::sqrt(0.25 * (h(0, 0) - h(1, 1)) * (h(0, 0) - h(1, 1)) + h(0, 1) * h(0, 1));
+      const double lmin = 0.5 * tr - disc, lmax = 0.5 * tr + disc;
+      if (!(lmin > 1e-8 * std::abs(lmax)))
+        hs += (std::abs(lmin) + 1e-3 * std::abs(lmax) + 1e-300) * Eigen::Matrix2d::Identity();
+      const Eigen::Vector2d step = hs.llt().solve(-g);
+      sx = step(0);
+      sy = step(1);
+      // Keep within the move limit around the Lagrangian position.
+      const double dx = px + sx - x_lag[p], dy = py + sy - y_lag[p];
+      const double dist = norm2(dx, dy);
+      if (dist > lim) {
+        sx = x_lag[p] + dx * (lim / dist) - px;
+        sy = y_lag[p] + dy * (lim / dist) - py;
+      }
+      if (!(norm2(sx, sy) > 1e-10 * lim)) return;
+    } else {
+      // Along the old boundary: arc length sigma >= 0 toward b, < 0 toward a.
+      const Eigen::Vector2d db(eb[0], eb[1]), da(-ea[0], -ea[1]);
+      const bool toward_b = sigma0 > 0 || (sigma0 == 0 && g.dot(db) < 0);
+      const Eigen::Vector2d d = toward_b ? db : da;
+      const double gd = g.dot(d), hd = d.dot(h * d);
+      const double s = hd > 0 ? -gd / hd : -gd / (h.norm() + 1e-300);
+      if (sigma0 == 0 && (toward_b ? !(s > 0) : !(s < 0))) return;
+      sigma1 = sigma0 + s;
+      if ((sigma0 > 0 && sigma1 < 0) || (sigma0 < 0 && sigma1 > 0)) sigma1 = 0;  // stop at the kink
+      sigma1 = std::clamp(sigma1, -std::min(0.45 * la, lim), std::min(0.45 * lb, lim));
+      if (!(std::abs(sigma1 - sigma0) > 1e-10 * lim)) return;
+    }
+    const auto position = [&](double t, double* qx, double* qy) {
+      if (kind == RezonePointKind::interior) {
+        *qx = px + t * sx;
+        *qy = py + t * sy;
+      } else {
+        const double sg = sigma0 + t * (sigma1 - sigma0);
+        if (sg >= 0) {
+          *qx = x_lag[p] + sg * eb[0];
+          *qy = y_lag[p] + sg * eb[1];
+        } else {
+          *qx = x_lag[p] - sg * ea[0];
+          *qy = y_lag[p] - sg * ea[1];
+        }
+      }
+    };
+    // Backtracking: accept the first fraction that lowers F and keeps every zone around p
+    // as valid as it was.
+    for (double t = 1; t > 0.1; t *= 0.5) {
+      double qx, qy;
+      position(t, &qx, &qy);
+      if (!(local_value(lp, p, qx, qy, xs, ys, delta) < f0)) continue;
+      bool ok = true;
+      for (Index i = cb; i < ce && ok; ++i) {
+        const Index z = mesh.corner_zone[mesh.point_corners[i]];
+        if (zone_crosses(zone_vertices(mesh, z, xs, ys, p, qx, qy)) && !zone_crosses(zone_vertices(mesh, z, xs, ys)))
+          ok = false;
+      }
+      if (!ok) continue;
+      xs[p] = qx;
+      ys[p] = qy;
+      if (kind == RezonePointKind::slide) ws.arc[p] = sigma0 + t * (sigma1 - sigma0);
+      break;
+    }
+  };
+  for (int sweep = 0; sweep < options.iterations; ++sweep)
+    for (std::size_t colour = 0; colour + 1 < rc.colour_begin.size(); ++colour) {
+      const Index cb = rc.colour_begin[colour], count = rc.colour_begin[colour + 1] - cb;
+#pragma omp parallel for schedule(static) if (count > 20000)
+      for (Index i = 0; i < count; ++i) update(rc.colour_points[cb + i]);
+    }
 
   // Relaxation toward the Lagrangian mesh, then the validity guard: a zone valid at the
   // Lagrangian positions that is not valid now halves the weight of its points; after a few

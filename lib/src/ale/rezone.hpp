@@ -50,6 +50,9 @@ struct RezoneConstraints {
   // x_etaeta of the logical second derivatives) and 2 (x_xi, x_eta), then the 5 row sums.
   std::vector<Index> weights_begin{0};
   std::vector<double> stencil_weights;
+  // The points that may move, by colour: no two points of a colour share a zone, so a sweep
+  // updates each colour's points independently (in parallel, same result on any thread count).
+  std::vector<Index> colour_begin{0}, colour_points;
 };
 
 // Rezone options. The defaults are those of the [ale] scene section (docs/scenes.md).

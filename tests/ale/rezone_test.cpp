@@ -408,6 +408,14 @@ TEST(Rezone, PolygonSoupWithHexagonsAndTriangles) {
     }
   const Mesh mesh = build_mesh(soup);
   const RezoneConstraints rc = make_rezone_constraints(mesh, {});
+  // The middle of a hexagon's bottom side has one zone and a straight angle: its logical
+  // neighbours are collinear, so it gets no Winslow stencil (and does not move under Winslow).
+  Index hanging = -1;
+  for (Index p = 0; p < mesh.num_points(); ++p)
+    if (mesh.x[p] == 1.0 / n && mesh.y[p] == 0) hanging = p;
+  ASSERT_GE(hanging, 0);
+  EXPECT_EQ(rc.stencil_id[hanging], -1);
+  EXPECT_EQ(rc.kind[hanging], RezonePointKind::slide);
   const Positions lag = perturb_interior(mesh, rc, 0.25, 1.0 / n, 4);
   ASSERT_EQ(crossing_zones(mesh, lag.x, lag.y), 0);
   for (const RezoneMethod m : {RezoneMethod::winslow, RezoneMethod::reference_jacobian}) {

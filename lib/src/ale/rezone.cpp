@@ -327,13 +327,19 @@ bool winslow_fan(const Mesh& mesh, Index p, std::vector<Index>& points, std::vec
 // a^2/2 x_xixi + a b x_xieta + b^2/2 x_etaeta. A small penalty on the second derivatives
 // makes under-determined fans (few neighbours) solvable and leaves linear maps exact (their
 // second derivatives are zero, so the penalty costs nothing there).
-void winslow_weights(const std::vector<double>& xi, const std::vector<double>& eta, std::vector<double>& out) {
+// Returns false (no weights appended) if the first derivatives are not determined: a fan whose
+// logical neighbours lie on one line (a point in the middle of a straight side of its only zone).
+bool winslow_weights(const std::vector<double>& xi, const std::vector<double>& eta, std::vector<double>& out) {
   const int n = static_cast<int>(xi.size());
   Eigen::MatrixXd a(n, 5);
   for (int i = 0; i < n; ++i) a.row(i) << xi[i], eta[i], 0.5 * xi[i] * xi[i], xi[i] * eta[i], 0.5 * eta[i] * eta[i];
   Eigen::Matrix<double, 5, 5> m = a.transpose() * a;
   for (int k = 2; k < 5; ++k) m(k, k) += 1e-4;
-  const Eigen::MatrixXd pinv = m.ldlt().solve(a.transpose());  // 5 x n
+  const Eigen::LDLT<Eigen::Matrix<double, 5, 5>> ldlt(m);
+  const auto d = ldlt.vectorD();
+  if (ldlt.info() != Eigen::Success || !(d.minCoeff() > 1e-10 * d.maxCoeff())) return false;
+  const Eigen::MatrixXd pinv = ldlt.solve(a.transpose());  // 5 x n
+  if (!pinv.allFinite()) return false;
   // Stored per neighbour as (xixi, xieta, etaeta, xi, eta), then the row sums.
   const int row[5] = {2, 3, 4, 0, 1};
   double sum[5] = {0, 0, 0, 0, 0};
@@ -343,6 +349,7 @@ void winslow_weights(const std::vector<double>& xi, const std::vector<double>& e
       sum[k] += pinv(row[k], i);
     }
   for (int k = 0; k < 5; ++k) out.push_back(sum[k]);
+  return true;
 }
 
 }  // namespace
@@ -438,13 +445,16 @@ RezoneConstraints make_rezone_constraints(const Mesh& mesh, std::span<const Boun
   std::vector<int> key;
   for (Index p = 0; p < np; ++p) {
     if (rc.kind[p] != RezonePointKind::fixed && winslow_fan(mesh, p, fan_points, xi, eta, key)) {
-      const auto [it, inserted] = known.try_emplace(key, static_cast<Index>(known.size()));
-      if (inserted) {
-        winslow_weights(xi, eta, rc.stencil_weights);
-        rc.weights_begin.push_back(static_cast<Index>(rc.stencil_weights.size()));
+      // known: fan type -> weight set, or -1 for a fan without usable weights.
+      auto it = known.find(key);
+      if (it == known.end()) {
+        const bool ok = winslow_weights(xi, eta, rc.stencil_weights);
+        const Index id = ok ? static_cast<Index>(rc.weights_begin.size()) - 1 : -1;
+        if (ok) rc.weights_begin.push_back(static_cast<Index>(rc.stencil_weights.size()));
+        it = known.emplace(key, id).first;
       }
       rc.stencil_id[p] = it->second;
-      rc.stencil_points.insert(rc.stencil_points.end(), fan_points.begin(), fan_points.end());
+      if (it->second >= 0) rc.stencil_points.insert(rc.stencil_points.end(), fan_points.begin(), fan_points.end());
     }
     rc.stencil_begin.push_back(static_cast<Index>(rc.stencil_points.size()));
   }

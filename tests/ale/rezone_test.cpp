@@ -313,7 +313,8 @@ TEST(Rezone, NeverReturnsAnInvalidMesh) {
   const int n = 12;
   const Mesh mesh = rectangle_mesh(n, n);
   const RezoneConstraints rc = make_rezone_constraints(mesh, {});
-  int nonconvex_inputs = 0;
+  int nonconvex_inputs = 0, guard_rounds = 0;
+  Index backed_off = 0;
   for (unsigned seed = 1; seed <= 20; ++seed) {
     Positions lag = perturb_interior(mesh, rc, 0.49, 1.0 / n, 100 + seed);
     // Zones that cross in the input: give their points back the uniform positions.
@@ -333,11 +334,17 @@ TEST(Rezone, NeverReturnsAnInvalidMesh) {
         o.iterations = 3;
         const Rezoned r = run_rezone(mesh, rc, o, lag);
         EXPECT_EQ(crossing_zones(mesh, r.pos.x, r.pos.y), 0) << "seed " << seed;
+        guard_rounds += r.result.backoff_rounds;
+        backed_off += r.result.backed_off_points;
         EXPECT_GT(mesh_quality_summary(mesh, QualityMeasure::scaled_jacobian, r.pos.x, r.pos.y, {}, {}).worst,
                   mesh_quality_summary(mesh, QualityMeasure::scaled_jacobian, lag.x, lag.y, {}, {}).worst);
       }
   }
   EXPECT_GT(nonconvex_inputs, 5);  // the test does exercise non-convex zones
+  // Winslow and the safeguarded Newton rarely need the guard on such meshes; it is tested on
+  // its own below (Rezone.GuardBacksOffToAValidMesh).
+  EXPECT_GE(guard_rounds, 0);
+  EXPECT_GE(backed_off, 0);
 }
 
 TEST(Rezone, UnstructuredGmshMeshWithTriangles) {
@@ -457,6 +464,45 @@ TEST(Rezone, ResultDoesNotDependOnTheThreadCount) {
     EXPECT_EQ(one.pos.y, three.pos.y);
     EXPECT_GT(one.result.max_displacement, 0.0);
   }
+}
+
+TEST(Rezone, GuardBacksOffToAValidMesh) {
+  // A "smoothed" mesh that folds: one interior point pushed through its right neighbour.
+  const int n = 4;
+  const Mesh mesh = rectangle_mesh(n, n);
+  const RezoneConstraints rc = make_rezone_constraints(mesh, {});
+  Index p = -1;
+  for (Index q = 0; q < mesh.num_points(); ++q)
+    if (mesh.x[q] == 0.25 && mesh.y[q] == 0.5) p = q;
+  ASSERT_GE(p, 0);
+  std::vector<double> xn(mesh.num_points()), yn(mesh.num_points());
+  RezoneWorkspace ws;
+  for (const auto& [push, rounds] : {std::pair{1.5, 1}, std::pair{1000.0, 9}}) {
+    std::vector<double> xs = mesh.x;
+    xs[p] += push * 0.25;  // 1.5 h: past the neighbour; 1000 h: past everything
+    ASSERT_GT(crossing_zones(mesh, xs, mesh.y), 0);
+    const RezoneResult r = relax_and_guard(mesh, rc, 1.0, mesh.x, mesh.y, xs, mesh.y, xn, yn, ws);
+    EXPECT_EQ(crossing_zones(mesh, xn, yn), 0);
+    EXPECT_EQ(r.backoff_rounds, rounds);
+    EXPECT_EQ(r.backed_off_points, 6);  // the points of the two folded zones (to the right of p)
+    if (push < 2) {
+      EXPECT_EQ(xn[p], 0.25 + 0.5 * push * 0.25);  // halved once: 0.75 h, valid
+    } else {
+      EXPECT_EQ(xn[p], mesh.x[p]);  // back to the Lagrangian position after eight halvings
+    }
+    for (Index q = 0; q < mesh.num_points(); ++q) {
+      if (q != p) {
+        EXPECT_EQ(xn[q], mesh.x[q]);
+      }
+    }
+  }
+  // A zone already folded in the Lagrangian mesh is not the guard's: it is left as it is.
+  std::vector<double> xl = mesh.x;
+  xl[p] += 0.4;
+  ASSERT_GT(crossing_zones(mesh, xl, mesh.y), 0);
+  const RezoneResult r = relax_and_guard(mesh, rc, 1.0, xl, mesh.y, xl, mesh.y, xn, yn, ws);
+  EXPECT_EQ(r.backoff_rounds, 0);
+  EXPECT_EQ(xn, xl);
 }
 
 TEST(Rezone, QualityMeasures) {

@@ -520,30 +520,40 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& rc, const RezoneO
   ws.xs.assign(x_lag.begin(), x_lag.end());
   ws.ys.assign(y_lag.begin(), y_lag.end());
   ws.arc.assign(np, 0.0);
-  ws.move_limit.assign(np, std::numeric_limits<double>::infinity());
-  ws.weight.assign(np, options.relaxation);
-  ws.flag.assign(std::max(np, nz), 0);
-  if (use_reference) ws.target.resize(4 * static_cast<std::size_t>(nc));
-  for (Index z = 0; z < nz; ++z) {
-    const Index b = mesh.zone_corner_begin[z], e = mesh.zone_corner_begin[z + 1];
-    const int m = static_cast<int>(e - b);
-    for (Index c = b; c < e && use_reference; ++c) {
-      const Index p0 = mesh.corner_point[c], p1 = mesh.corner_point[c + 1 == e ? b : c + 1],
-                  p2 = mesh.corner_point[c == b ? e - 1 : c - 1];
-      const CornerTarget t = reference_target(x_ref[p1] - x_ref[p0], y_ref[p1] - y_ref[p0], x_ref[p2] - x_ref[p0],
-                                              y_ref[p2] - y_ref[p0], m);
-      ws.target[4 * c] = t.k11;
-      ws.target[4 * c + 1] = t.k12;
-      ws.target[4 * c + 2] = t.k22;
-      ws.target[4 * c + 3] = t.det_m;
+  ws.move_limit.resize(np);
+  if (use_reference) {
+    ws.target.resize(4 * static_cast<std::size_t>(nc));
+    for (Index z = 0; z < nz; ++z) {
+      const Index b = mesh.zone_corner_begin[z], e = mesh.zone_corner_begin[z + 1];
+      const int m = static_cast<int>(e - b);
+      for (Index c = b; c < e; ++c) {
+        const Index p0 = mesh.corner_point[c], p1 = mesh.corner_point[c + 1 == e ? b : c + 1],
+                    p2 = mesh.corner_point[c == b ? e - 1 : c - 1];
+        const CornerTarget t = reference_target(x_ref[p1] - x_ref[p0], y_ref[p1] - y_ref[p0], x_ref[p2] - x_ref[p0],
+                                                y_ref[p2] - y_ref[p0], m);
+        ws.target[4 * c] = t.k11;
+        ws.target[4 * c + 1] = t.k12;
+        ws.target[4 * c + 2] = t.k22;
+        ws.target[4 * c + 3] = t.det_m;
+      }
     }
-    // Each point moves at most max_move times its shortest Lagrangian edge.
-    for (Index c = b; c < e; ++c) {
-      const Index p = mesh.corner_point[c], q = mesh.corner_point[c + 1 == e ? b : c + 1];
-      const double len = norm2(x_lag[q] - x_lag[p], y_lag[q] - y_lag[p]);
-      ws.move_limit[p] = std::min(ws.move_limit[p], options.max_move * len);
-      ws.move_limit[q] = std::min(ws.move_limit[q], options.max_move * len);
+  }
+  // Each point moves at most max_move times its shortest Lagrangian edge (a gather over the
+  // point's corners, so the loop is parallel).
+#pragma omp parallel for schedule(static) if (np > 20000)
+  for (Index p = 0; p < np; ++p) {
+    double shortest2 = std::numeric_limits<double>::infinity();
+    if (rc.kind[p] != RezonePointKind::fixed) {
+      for (Index i = mesh.point_corner_begin[p]; i < mesh.point_corner_begin[p + 1]; ++i) {
+        const Index c = mesh.point_corners[i], z = mesh.corner_zone[c];
+        const Index b = mesh.zone_corner_begin[z], e = mesh.zone_corner_begin[z + 1];
+        for (const Index q : {mesh.corner_point[c + 1 == e ? b : c + 1], mesh.corner_point[c == b ? e - 1 : c - 1]}) {
+          const double dx = x_lag[q] - x_lag[p], dy = y_lag[q] - y_lag[p];
+          shortest2 = std::min(shortest2, dx * dx + dy * dy);
+        }
+      }
     }
+    ws.move_limit[p] = options.max_move * std::sqrt(shortest2);
   }
 
   // Slide points this call: the boundary turns by at most corner_angle at the Lagrangian
@@ -690,11 +700,32 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& rc, const RezoneO
       for (Index i = 0; i < count; ++i) update(rc.colour_points[cb + i]);
     }
 
+  return relax_and_guard(mesh, rc, options.relaxation, x_lag, y_lag, ws.xs, ws.ys, x_new, y_new, ws);
+}
+
+RezoneResult relax_and_guard(const Mesh& mesh, const RezoneConstraints& rc, double relaxation,
+                             std::span<const double> x_lag, std::span<const double> y_lag,
+                             std::span<const double> x_smooth, std::span<const double> y_smooth,
+                             std::span<double> x_new, std::span<double> y_new, RezoneWorkspace& ws) {
+  const Index np = mesh.num_points(), nz = mesh.num_zones();
+  if (!(relaxation >= 0 && relaxation <= 1))
+    throw Error("rezone: relaxation = " + std::to_string(relaxation) + " is outside [0, 1]");
+  for (const auto& [span, name] : {std::pair{x_lag, "x_lag"}, std::pair{y_lag, "y_lag"},
+                                   std::pair{x_smooth, "x_smooth"}, std::pair{y_smooth, "y_smooth"}})
+    check_size(span, np, name, mesh);
+  check_size({x_new.data(), x_new.size()}, np, "x_new", mesh);
+  check_size({y_new.data(), y_new.size()}, np, "y_new", mesh);
+  if (static_cast<Index>(rc.kind.size()) != np)
+    throw Error("rezone: the constraints were built for " + std::to_string(rc.kind.size()) + " points, the mesh " +
+                mesh.source + " has " + std::to_string(np));
+  RezoneResult result;
+  const double* xs = x_smooth.data();
+  const double* ys = y_smooth.data();
+  const RezoneOptions options{.relaxation = relaxation};
   // Relaxation toward the Lagrangian mesh, then the validity guard: a zone valid at the
   // Lagrangian positions that is not valid now halves the weight of its points; after a few
   // rounds its points go back to the Lagrangian positions, where it is valid.
-  const auto blend = [&](Index p) {
-    const double w = ws.weight[p];
+  const auto blend = [&](Index p, double w) {
     if (rc.kind[p] == RezonePointKind::fixed || w == 0) {
       x_new[p] = x_lag[p];
       y_new[p] = y_lag[p];
@@ -703,29 +734,43 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& rc, const RezoneO
       y_new[p] = y_lag[p] + w * (ys[p] - y_lag[p]);
     }
   };
-  for (Index p = 0; p < np; ++p) blend(p);
-  std::vector<std::uint8_t>& touched = ws.flag;
+#pragma omp parallel for schedule(static) if (np > 20000)
+  for (Index p = 0; p < np; ++p) blend(p, options.relaxation);
+  std::vector<std::uint8_t>& bad_zone = ws.flag;
+  bad_zone.resize(nz);
   for (int round = 0;; ++round) {
     Index bad = 0;
-    std::fill(touched.begin(), touched.end(), 0);
+#pragma omp parallel for schedule(static) reduction(+ : bad) if (nz > 20000)
     for (Index z = 0; z < nz; ++z) {
-      if (!zone_crosses(zone_vertices(mesh, z, x_new.data(), y_new.data()))) continue;
-      if (zone_crosses(zone_vertices(mesh, z, x_lag.data(), y_lag.data()))) continue;
-      ++bad;
-      for (Index c = mesh.zone_corner_begin[z]; c < mesh.zone_corner_begin[z + 1]; ++c)
-        touched[mesh.corner_point[c]] = 1;
+      bad_zone[z] = zone_crosses(zone_vertices(mesh, z, x_new.data(), y_new.data())) &&
+                    !zone_crosses(zone_vertices(mesh, z, x_lag.data(), y_lag.data()));
+      bad += bad_zone[z];
     }
     if (bad == 0) break;
+    if (round == 0) ws.weight.assign(np, options.relaxation);
     result.backoff_rounds = round + 1;
-    for (Index p = 0; p < np; ++p) {
-      if (!touched[p]) continue;
-      if (ws.weight[p] == options.relaxation) ++result.backed_off_points;
-      ws.weight[p] = round >= 8 ? 0.0 : 0.5 * ws.weight[p];
-      blend(p);
+    for (Index z = 0; z < nz; ++z) {
+      if (!bad_zone[z]) continue;
+      for (Index c = mesh.zone_corner_begin[z]; c < mesh.zone_corner_begin[z + 1]; ++c) {
+        const Index p = mesh.corner_point[c];
+        if (ws.weight[p] == options.relaxation) ++result.backed_off_points;
+        // Halve once per round, however many bad zones share the point (-0: marked).
+        if (!std::signbit(ws.weight[p])) ws.weight[p] = round >= 8 ? -0.0 : -0.5 * ws.weight[p];
+      }
     }
+    for (Index p = 0; p < np; ++p)
+      if (std::signbit(ws.weight[p])) {
+        ws.weight[p] = -ws.weight[p];
+        blend(p, ws.weight[p]);
+      }
   }
-  for (Index p = 0; p < np; ++p)
-    result.max_displacement = std::max(result.max_displacement, norm2(x_new[p] - x_lag[p], y_new[p] - y_lag[p]));
+  double largest2 = 0;
+#pragma omp parallel for schedule(static) reduction(max : largest2) if (np > 20000)
+  for (Index p = 0; p < np; ++p) {
+    const double dx = x_new[p] - x_lag[p], dy = y_new[p] - y_lag[p];
+    largest2 = std::max(largest2, dx * dx + dy * dy);
+  }
+  result.max_displacement = std::sqrt(largest2);
   return result;
 }
 

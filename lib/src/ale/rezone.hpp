@@ -110,6 +110,16 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& constraints, cons
                     std::span<const double> y_ref, std::span<double> x_new, std::span<double> y_new,
                     RezoneWorkspace& workspace);
 
+// The last stage of rezone on its own (for tests and for other smoothers):
+// (x_new, y_new) = x_lag + relaxation (x_smooth - x_lag), fixed points bitwise Lagrangian; then
+// every zone valid at the Lagrangian positions and not at the new ones halves the relaxation
+// of its points, round after round, and after eight rounds puts them back to their Lagrangian
+// positions. Every zone valid at (x_lag, y_lag) is valid at (x_new, y_new).
+RezoneResult relax_and_guard(const Mesh& mesh, const RezoneConstraints& constraints, double relaxation,
+                             std::span<const double> x_lag, std::span<const double> y_lag,
+                             std::span<const double> x_smooth, std::span<const double> y_smooth,
+                             std::span<double> x_new, std::span<double> y_new, RezoneWorkspace& workspace);
+
 // Zone quality, for a remap trigger and for reports.
 enum class QualityMeasure {
   // min over corners of sin(corner angle) = (u x v) / (|u| |v|): 1 for rectangles, <= 0 for

@@ -41,7 +41,6 @@ class AleRemap final : public Remap {
   std::vector<char> lagrangian_;      // eulerian mode: points that follow the material
   std::vector<StateArray> specific_;  // the zone fields carried per unit mass
   std::vector<double> xn_, yn_, xa_, ya_, xb_, yb_, kinetic_, zone_mass_old_, dE_;
-  long last_cycle_ = 0;
 };
 
 std::vector<int> zone_materials(const Simulation::Impl& s) {
@@ -87,7 +86,8 @@ AleRemap::AleRemap(Simulation::Impl& s)
 bool AleRemap::due() const {
   const AleOptions& o = s_.problem.ale;
   if (o.mode == AleMode::eulerian) return true;
-  return s_.cycle - last_cycle_ >= o.remap_every;
+  // By the cycle number alone, so that a restart remaps where the uninterrupted run does.
+  return s_.cycle % o.remap_every == 0;
 }
 
 void AleRemap::new_positions() {
@@ -189,7 +189,6 @@ void AleRemap::fixup() {
 
 bool AleRemap::remap(RemapState&) {
   if (!due()) return false;
-  last_cycle_ = s_.cycle;
   const Mesh& m = s_.mesh();
   const Index np = m.num_points(), nz = m.num_zones();
   new_positions();

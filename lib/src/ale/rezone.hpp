@@ -14,13 +14,16 @@ namespace stagger {
 
 // How the smooth target positions are found (docs/ale.md, "Rezone").
 enum class RezoneMethod {
-  // Discrete Winslow (equipotential) smoothing: minimises the Brackbill-Saltzman smoothness
-  // functional sum_corners |J|^2 / det J with J the corner Jacobian mapped from a regular
-  // polygon's corner. A uniform Cartesian mesh is a fixed point.
+  // Winslow (equipotential) smoothing: Gauss-Seidel sweeps of the Winslow equations
+  // alpha x_xixi - 2 beta x_xieta + gamma x_etaeta = 0, the derivatives fitted by least
+  // squares over each point's one-ring laid out in a local logical space (Knupp 1999). A
+  // uniform Cartesian mesh is a fixed point. The fast default.
   winslow,
-  // The same functional with J mapped from the corner of the reference (initial) mesh
-  // (target-matrix form): the initial mesh is a fixed point, so graded and unstructured
-  // meshes keep their own shape instead of being pulled toward squares.
+  // Point-by-point minimisation of the corner functional sum |T|^2 / det T, T the corner
+  // Jacobian relative to the reference (initial) mesh's corner (Brackbill-Saltzman smoothness
+  // in target-matrix form): the initial mesh is a fixed point, so graded and unstructured
+  // meshes keep their own shape; every step keeps the zones around the point valid. Costs
+  // several times more per sweep than winslow.
   reference_jacobian,
 };
 
@@ -38,6 +41,18 @@ struct RezoneConstraints {
   // Slide points: their two neighbours along the boundary (point ids), else -1.
   std::vector<std::array<Index, 2>> boundary_neighbours;
   Index num_interior = 0, num_slide = 0, num_fixed = 0;
+  // Winslow stencils: the one-ring of point p (its zones' other vertices, counter-clockwise)
+  // is stencil_points[stencil_begin[p] .. stencil_begin[p + 1]); stencil_id[p] indexes the
+  // least-squares derivative weights of its local logical layout (-1: no stencil, the point
+  // does not move under Winslow). Points with the same zone sizes around them share weights.
+  std::vector<Index> stencil_begin{0}, stencil_points, stencil_id;
+  // Per stencil: offset into stencil_weights; per neighbour 3 weights (x_xixi, x_xieta,
+  // x_etaeta of the logical second derivatives) and 2 (x_xi, x_eta), then the 5 row sums.
+  std::vector<Index> weights_begin{0};
+  std::vector<double> stencil_weights;
+  // The points that may move, by colour: no two points of a colour share a zone, so a sweep
+  // updates each colour's points independently (in parallel, same result on any thread count).
+  std::vector<Index> colour_begin{0}, colour_points;
 };
 
 // Rezone options. The defaults are those of the [ale] scene section (docs/scenes.md).
@@ -48,7 +63,7 @@ struct RezoneOptions {
   double relaxation = 0.5;
   // Gauss-Seidel sweeps of the point-by-point minimisation (each sweep visits every free
   // point once, one safeguarded Newton step). >= 0; 0 also returns the Lagrangian mesh.
-  int iterations = 2;
+  int iterations = 1;
   // A boundary point slides only where its two boundary edges turn by at most this angle
   // (at the Lagrangian positions); elsewhere it is a corner and stays. Degrees, in [0, 90).
   double corner_angle_degrees = 0.5;
@@ -67,9 +82,12 @@ struct RezoneResult {
 // Scratch arrays reused between calls (sized on first use), so that the rezone allocates
 // nothing in the time loop after the first call.
 struct RezoneWorkspace {
+  std::vector<double> target;      // per corner: the functional's target constants (4 each)
+  std::vector<double> xs, ys;      // per point: the smoothed positions before relaxation
+  std::vector<double> arc;         // per point: slide points' arc length along the boundary
+  std::vector<double> move_limit;  // per point: max_move * shortest Lagrangian edge
   std::vector<double> weight;      // per point: relaxation actually applied
-  std::vector<std::uint8_t> flag;  // per zone / point marks of the validity guard
-  std::vector<double> move_limit;  // per point: max_move * shortest edge
+  std::vector<std::uint8_t> flag;  // per point: marks of the validity guard
 };
 
 // Classifies every point. `boundaries` are the problem's conditions (periodic tags are
@@ -91,6 +109,16 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& constraints, cons
                     std::span<const double> x_lag, std::span<const double> y_lag, std::span<const double> x_ref,
                     std::span<const double> y_ref, std::span<double> x_new, std::span<double> y_new,
                     RezoneWorkspace& workspace);
+
+// The last stage of rezone on its own (for tests and for other smoothers):
+// (x_new, y_new) = x_lag + relaxation (x_smooth - x_lag), fixed points bitwise Lagrangian; then
+// every zone valid at the Lagrangian positions and not at the new ones halves the relaxation
+// of its points, round after round, and after eight rounds puts them back to their Lagrangian
+// positions. Every zone valid at (x_lag, y_lag) is valid at (x_new, y_new).
+RezoneResult relax_and_guard(const Mesh& mesh, const RezoneConstraints& constraints, double relaxation,
+                             std::span<const double> x_lag, std::span<const double> y_lag,
+                             std::span<const double> x_smooth, std::span<const double> y_smooth,
+                             std::span<double> x_new, std::span<double> y_new, RezoneWorkspace& workspace);
 
 // Zone quality, for a remap trigger and for reports.
 enum class QualityMeasure {

@@ -103,6 +103,28 @@ struct HydroOptions {
   bool check_corner_areas = true;
 };
 
+/// How the mesh moves (a scene's [ale]; docs/ale.md): with the material (Lagrangian), rezoned
+/// and remapped (ALE), or back to the initial mesh after every step (Eulerian).
+enum class AleMode { lagrangian, ale, eulerian };
+/// The rezone of ale.mode = "ale" (docs/ale.md, "Rezone").
+enum class AleRezone { winslow, reference_jacobian };
+/// The limiter of the remap's piecewise-linear reconstruction.
+enum class AleLimiter { barth_jespersen, none };
+
+/// ALE options (a scene's [ale]). Ranges, units and meanings: ale_option_table() in
+/// option_table.hpp. mode = lagrangian (the default) leaves the run bitwise Lagrangian.
+struct AleOptions {
+  AleMode mode = AleMode::lagrangian;
+  AleRezone rezone = AleRezone::winslow;
+  double relaxation = 0.5;     ///< rezone: fraction of the way from the Lagrangian to the smoothed mesh
+  int rezone_iterations = 2;   ///< rezone: smoothing sweeps per remap
+  double corner_angle = 0.5;   ///< rezone: boundary points slide where the boundary turns less (degrees)
+  double max_move = 0.5;       ///< rezone: largest move of a point per remap, in its shortest edges
+  int remap_every = 1;         ///< remap after every N-th cycle
+  double quality_trigger = 0;  ///< also remap when the worst zone quality falls below it; 0: off
+  AleLimiter limiter = AleLimiter::barth_jespersen;
+};
+
 /// Manufactured-solution source terms (docs/algorithm.md §1 steps 3, 4 and 7).
 struct Sources {
   /// Momentum source per unit volume (force density) at (x, y, t): point force V_p s.
@@ -123,6 +145,7 @@ struct Problem {
   std::vector<EnergyDeposit> deposits;        ///< point energy sources at t = 0 (Sedov)
   std::optional<Sources> sources;             ///< manufactured-solution sources, if any
   HydroOptions options;                       ///< numerics (defaults: docs/scenes.md [numerics])
+  AleOptions ale;                             ///< mesh motion (defaults: Lagrangian; docs/ale.md)
   double t_end = 0;                           ///< end time, > 0
   /// Checks names, ranges and completeness; throws stagger::Error with the offending item.
   void validate() const;

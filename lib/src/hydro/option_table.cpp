@@ -242,6 +242,8 @@ std::string OptionTable<Options>::markdown() const {
 }
 
 template struct Option<HydroOptions>;
+template struct Option<AleOptions>;
+template struct OptionTable<AleOptions>;
 template struct Option<Problem>;
 template struct Option<RunControl>;
 template struct Option<EnergyDeposit>;
@@ -295,6 +297,35 @@ const OptionTable<HydroOptions>& numerics_option_table() {
           flag<&O::check_corner_areas>("check_corner_areas",
                                        "a non-positive median-mesh corner area counts as tangling; false: zone "
                                        "areas only (a chevron zone passes; no shipped scene needs it, §9)"),
+      }};
+  return table;
+}
+
+const OptionTable<AleOptions>& ale_option_table() {
+  using A = AleOptions;
+  static const OptionTable<AleOptions> table{
+      "ale",
+      "AleOptions",
+      {
+          choice<&A::mode>("mode", {"lagrangian", "ale", "eulerian"},
+                           "mesh motion: with the material, rezoned and remapped, or back to the initial mesh "
+                           "after every step (docs/ale.md)"),
+          choice<&A::rezone>("rezone", {"winslow", "reference_jacobian"},
+                             "rezone of mode \"ale\": Winslow smoothing or towards the initial zone shapes"),
+          number<&A::relaxation>("relaxation", {0, 1, false, false}, "-",
+                                 "rezone: how far from the Lagrangian towards the smoothed mesh; 0: Lagrangian"),
+          integer<&A::rezone_iterations>("rezone_iterations", {0, 1000, false, false}, "-",
+                                         "rezone: smoothing sweeps per remap"),
+          number<&A::corner_angle>("corner_angle", {0, 90, false, true}, "degrees",
+                                   "rezone: boundary points slide only where the boundary turns by less"),
+          number<&A::max_move>("max_move", {0, 1, true, false}, "-",
+                               "rezone: largest move of a point per remap, in units of its shortest edge"),
+          integer<&A::remap_every>("remap_every", {1, 1e9, false, false}, "cycles", "remap after every N-th cycle"),
+          number<&A::quality_trigger>("quality_trigger", {0, 1, false, true}, "-",
+                                      "also remap when the worst zone shape quality (1 at t = 0) falls below it; "
+                                      "0: off"),
+          choice<&A::limiter>("limiter", {"barth_jespersen", "none"},
+                              "limiter of the remap's linear reconstruction (none: second order without bounds)"),
       }};
   return table;
 }
@@ -408,6 +439,7 @@ namespace {
 std::string generated_table(const std::string& section) {
   if (section == numerics_option_table().section) return numerics_option_table().markdown();
   if (section == time_option_table().section) return time_option_table().markdown();
+  if (section == ale_option_table().section) return ale_option_table().markdown();
   if (section == output_option_table().section) return output_option_table().markdown();
   if (section == deposit_option_table().section) return deposit_option_table().markdown();
   if (section == strength_option_table().section) return strength_option_table().markdown();
@@ -415,7 +447,7 @@ std::string generated_table(const std::string& section) {
   if (section == mie_gruneisen_option_table().section) return mie_gruneisen_option_table().markdown();
   if (section == jwl_option_table().section) return jwl_option_table().markdown();
   throw Error("generated option table: unknown section '" + section +
-              "' (known: numerics, time, output, deposit, material.strength, ideal_gas, mie_gruneisen, jwl)");
+              "' (known: numerics, time, output, deposit, material.strength, ideal_gas, mie_gruneisen, jwl, ale)");
 }
 
 }  // namespace
@@ -423,8 +455,8 @@ std::string generated_table(const std::string& section) {
 std::string with_generated_option_tables(const std::string& document) {
   static const std::string begin_mark = "<!-- begin generated: ", end_mark = "<!-- end generated: ",
                            close = " options -->";
-  const std::vector<std::string> sections = {"numerics",          "time",      "output",        "deposit",
-                                             "material.strength", "ideal_gas", "mie_gruneisen", "jwl"};
+  const std::vector<std::string> sections = {"numerics",  "time",          "output", "deposit", "material.strength",
+                                             "ideal_gas", "mie_gruneisen", "jwl",    "ale"};
   std::vector<std::string> seen;
   std::istringstream in(document);
   std::string out, line;

@@ -75,7 +75,8 @@ struct Simulation::Impl {
   std::vector<double> burn, burn_new, lighting_time, burn_length;
   // Corner forces: the last corrector's f^{n-1/2}, overwritten in place by f^{n+1/2}.
   std::vector<double> corner_fx, corner_fy;
-  std::vector<double> corner_mass;  // constant subzone masses (the subzonal hourglass options only)
+  std::vector<double> corner_mass;      // constant subzone masses (the subzonal hourglass options only)
+  std::vector<double> ale_corner_mass;  // median-mesh corner masses, the remap's subcells (ALE only)
   std::vector<EdgeContinuation> continuation;
 
   // Boundary conditions.
@@ -99,6 +100,7 @@ struct Simulation::Impl {
   long cycle = 0;
   bool have_previous_forces = false;
   double energy_initial = 0, boundary_work = 0, source_work = 0;
+  double ale_fixup = 0;  // kinetic energy the ALE remap's fix-up moved into internal energy (cumulative)
   enum class DtReason { cfl, growth, initial, maximum, retry, landing } dt_reason = DtReason::cfl;
   Index dt_zone = -1;  // zone that limited the last CFL/volume candidate
 

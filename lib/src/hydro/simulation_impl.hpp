@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "hydro/collective.hpp"
 #include "hydro/kernels/viscosity_edge.hpp"  // EdgeContinuation
 #include "hydro/walls.hpp"
 #include "stagger/simulation.hpp"
@@ -19,6 +20,7 @@ namespace stagger {
 struct ZoneRange {
   Index begin = 0, end = 0;
   int material = 0;
+  bool ghost = false;  // a distributed run's ghost zones: computed, but their failures and dt are not this rank's
 };
 
 // A point with one or two velocity constraints n_i . v = g_i(t) (docs/algorithm.md §10).
@@ -107,11 +109,18 @@ struct Simulation::Impl {
   // What defines the physics, fixed at set-up (checkpoints carry it; a restart compares it).
   std::vector<DigestEntry> digest;
 
+  // A distributed run (docs/parallel.md): the other ranks, the global number of each local
+  // zone and point, and which local ones are ghosts. Null and empty in a serial run.
+  std::unique_ptr<Collective> collective;
+  std::vector<Index> global_zone, global_point;
+  std::vector<unsigned char> ghost_zone, ghost_point;
+
   std::shared_ptr<Remap> remap;
   std::function<void(const Simulation&)> observer;
   const Simulation* owner = nullptr;  // the Simulation holding this Impl (for the observer)
 
   explicit Impl(Problem prob);
+  ~Impl();
   void step(double t_stop);
   bool try_step(double dt);  // false: a zone tangled, nothing committed
   // The calls of try_step (step.cpp; docs/algorithm.md §1).

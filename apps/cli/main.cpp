@@ -38,11 +38,11 @@ Output contract of 'stagger run' (in --out DIR, default output/<scene name>):
   summary.json   scene, zones, points, cycles, t_end, wall_seconds,
                  zone_cycles_per_second, threads, status ("completed" or the error
                  that stopped the run), energy {initial, final, boundary_work,
-                 source_work, relative_error}, momentum, errors {L1_density, ...} and
+                 source_work, ale_fixup, relative_error}, momentum, errors {L1_density, ...} and
                  diagnostics {...} when the scene has a [verification] reference
   history.csv    one row per recorded cycle: time, cycle, dt, kinetic, internal,
                  boundary_work, source_work, total, relative_energy_error,
-                 momentum_x, momentum_y
+                 momentum_x, momentum_y, ale_fixup
   <scene>.pvd    ParaView collection listing every dump (timestep, file); the last
                  one at the final time
   *.vtu          unstructured grids, points in double precision; zone fields

@@ -59,7 +59,7 @@ class PvdWriter {
 };
 
 /// One row per recorded cycle: time, cycle, dt, kinetic, internal, boundary_work,
-/// source_work, total, relative_energy_error, momentum_x, momentum_y. Kept in memory and
+/// source_work, total, relative_energy_error, momentum_x, momentum_y, ale_fixup. Kept in memory and
 /// rewritten atomically by flush().
 class HistoryWriter {
  public:
@@ -107,7 +107,7 @@ void write_zone_csv(const std::string& path, const Simulation& simulation);
 /// Writes summary.json: scene, zones, points, cycles, t_end (the problem's), time (reached),
 /// dt, dt_limit, wall_seconds, loop_seconds, zone_cycles_per_second (zones x cycles /
 /// loop_seconds), threads, status, energy {initial, final, kinetic, internal, boundary_work,
-/// source_work, relative_error}, momentum [x, y], errors {...}, diagnostics {...}.
+/// source_work, ale_fixup, relative_error}, momentum [x, y], errors {...}, diagnostics {...}.
 /// Numbers round-trip exactly; non-finite numbers are written as null. docs/output.md.
 void write_summary(const std::string& path, const Simulation& simulation, const RunSummary& summary);
 

@@ -142,6 +142,7 @@ EnergyAudit Simulation::energy() const {
   a.initial = impl_->energy_initial;
   a.boundary_work = impl_->boundary_work;
   a.source_work = impl_->source_work;
+  a.ale_fixup = impl_->ale_fixup;
   const double w = a.boundary_work + a.source_work;
   // docs/algorithm.md §11: normalise by max(E0, |W|, E), not E0 alone (E0 is 40x smaller than W on the piston).
   const double scale = std::max({std::abs(a.initial), std::abs(w), std::abs(a.total)});
@@ -193,7 +194,7 @@ std::vector<Simulation::OutputField> Simulation::output_fields() const {
 // ---- checkpoints: the state table's checkpointed arrays in the binary format of
 // io/byte_stream.hpp, behind the physics digest (docs/output.md, "Checkpoints") ----
 namespace {
-constexpr std::string_view kBlobMagic = "STGCKPT2";  // the last character is the blob's version
+constexpr std::string_view kBlobMagic = "STGCKPT3";  // the last character is the blob's version
 }  // namespace
 
 std::string Simulation::checkpoint() const {
@@ -214,6 +215,7 @@ std::string Simulation::checkpoint() const {
   w.f64(s.energy_initial);
   w.f64(s.boundary_work);
   w.f64(s.source_work);
+  w.f64(s.ale_fixup);
   for (const StateField& f : state_fields()) {
     if (!(f.flags & kCheckpointed)) continue;
     w.bytes(f.name);
@@ -248,7 +250,7 @@ void Simulation::restore(std::string_view blob, const std::string& source) {
   const long cycle = static_cast<long>(r.i64());
   const auto dt_zone = static_cast<Index>(r.i64());
   const bool have_previous_forces = r.u8() != 0;
-  const double energy_initial = r.f64(), boundary_work = r.f64(), source_work = r.f64();
+  const double energy_initial = r.f64(), boundary_work = r.f64(), source_work = r.f64(), ale_fixup = r.f64();
   // Two passes over the arrays: check every name and size, then copy, so that a bad blob
   // leaves the state untouched.
   io_detail::ByteReader arrays = r;
@@ -275,6 +277,7 @@ void Simulation::restore(std::string_view blob, const std::string& source) {
   s.energy_initial = energy_initial;
   s.boundary_work = boundary_work;
   s.source_work = source_work;
+  s.ale_fixup = ale_fixup;
   s.recompute_state();
   s.dt_next = dt_next;
   s.dt_zone = dt_zone;

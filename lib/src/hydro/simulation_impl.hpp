@@ -11,6 +11,7 @@
 
 #include "hydro/collective.hpp"
 #include "hydro/kernels/viscosity_edge.hpp"  // EdgeContinuation
+#include "hydro/walls.hpp"
 #include "stagger/simulation.hpp"
 
 namespace stagger {
@@ -76,7 +77,8 @@ struct Simulation::Impl {
   std::vector<double> burn, burn_new, lighting_time, burn_length;
   // Corner forces: the last corrector's f^{n-1/2}, overwritten in place by f^{n+1/2}.
   std::vector<double> corner_fx, corner_fy;
-  std::vector<double> corner_mass;  // constant subzone masses (the subzonal hourglass options only)
+  std::vector<double> corner_mass;      // constant subzone masses (the subzonal hourglass options only)
+  std::vector<double> ale_corner_mass;  // median-mesh corner masses, the remap's subcells (ALE only)
   std::vector<EdgeContinuation> continuation;
 
   // Boundary conditions.
@@ -84,6 +86,8 @@ struct Simulation::Impl {
   std::vector<int> velocity_bcs;  // Problem::boundaries indices of velocity BCs
   std::vector<std::vector<Index>> periodic_groups;
   std::vector<PressureEdge> pressure_edges;
+  std::vector<WallEdge> wall_edges, wall_rays;  // walls fixed in space (boundary.cpp)
+  WallGrid wall_grid;
   std::vector<Index> external_points;  // points with external forces (pressure, sources)
   std::vector<double> ext_fx, ext_fy;  // applied-pressure force per point (when used)
   std::vector<double> src_fx, src_fy;  // momentum-source force per point (when used)
@@ -98,6 +102,7 @@ struct Simulation::Impl {
   long cycle = 0;
   bool have_previous_forces = false;
   double energy_initial = 0, boundary_work = 0, source_work = 0;
+  double ale_fixup = 0;  // kinetic energy the ALE remap's fix-up moved into internal energy (cumulative)
   enum class DtReason { cfl, growth, initial, maximum, retry, landing } dt_reason = DtReason::cfl;
   Index dt_zone = -1;  // zone that limited the last CFL/volume candidate
 

@@ -44,6 +44,7 @@ ZoneModel zone_model(const Material& material) {
     m.strength = true;
     m.mu = material.strength->shear_modulus;
     m.yield = material.strength->yield_stress;
+    m.hardening = material.strength->hardening_modulus;
   }
   if (material.burn) {
     m.burn = true;
@@ -203,6 +204,7 @@ std::int64_t Simulation::Impl::zone_forces(const double* px, const double* py, d
                           data_or_null(sxx),
                           data_or_null(syy),
                           data_or_null(sxy),
+                          data_or_null(plastic),
                           data_or_null(grad_xx),
                           data_or_null(grad_xy),
                           data_or_null(grad_yx),
@@ -427,6 +429,12 @@ bool Simulation::Impl::try_step(double dt) {
     if (failure_kind(failure) == kTangled) return false;
     throw_zone_failure(*this, failure, "at the end of the step");
   }
+  // No point through a wall (docs/algorithm.md §10): retried like a tangled zone.
+  if (find_wall_crossing(*this, dt) >= 0) {
+    have_previous_forces = false;
+    recompute_state();
+    return false;
+  }
 
   // 6 (work). Work of the constraints, applied pressures and sources, for the audit.
   account_boundary_work(dt);
@@ -449,7 +457,7 @@ static std::string tangling_remedies(const HydroOptions& o) {
   else if (o.hourglass_coefficient < 2)
     tips.push_back("a larger numerics.hourglass_coefficient (2 is measured to hold a blast in a box)");
   if (o.cfl > 0.1) tips.push_back("a lower numerics.cfl");
-  if (o.viscosity == Viscosity::bulk && o.q1 < 2) tips.push_back("a larger numerics.q1");
+  if (o.viscosity != Viscosity::edge && o.q1 < 2) tips.push_back("a larger numerics.q1");
   tips.push_back("a finer or better-shaped mesh near the zone");
   std::string text = "try ";
   for (std::size_t i = 0; i < tips.size(); ++i) text += (i == 0 ? "" : i + 1 == tips.size() ? " or " : ", ") + tips[i];
@@ -503,12 +511,18 @@ void Simulation::Impl::step(double t_stop) {
       break;
     }
     if (attempt >= o.max_retries) {
-      // Report the tangled zone at the end of the last attempt.
+      // Report the tangled zone at the end of the last attempt, or the point through a wall.
       std::ostringstream msg;
+      const Index tangled = find_tangled_zone(dt_taken);
+      if (const Index p = tangled < 0 ? find_wall_crossing(*this, dt_taken) : -1; p >= 0) {
+        msg << "cycle " << cycle << ", t = " << t << ": " << describe_wall_crossing(*this, p, dt_taken)
+            << " even with dt = " << dt_taken << " after " << attempt << " retries (the mesh is folding against the "
+            << "wall; " << tangling_remedies(o) << ")";
+        throw Error(msg.str());
+      }
       msg << "cycle " << cycle << ", t = " << t
           << ": a zone tangled (non-positive area, crossing edges or a folded corner) even with dt = " << dt_taken
           << " after " << attempt << " retries";
-      const Index tangled = find_tangled_zone(dt_taken);
       const auto describe = [&](Index z) { return "; " + describe_zone(*this, z); };
       if (collective) {
         const std::int64_t code = collective->min_failure(*this, tangled >= 0 ? failure_code(tangled, 0) : kNoFailure);

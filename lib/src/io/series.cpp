@@ -43,7 +43,7 @@ void PvdWriter::write() const {
 namespace {
 constexpr const char* history_header =
     "time,cycle,dt,kinetic,internal,boundary_work,source_work,total,relative_energy_error,momentum_x,"
-    "momentum_y\n";
+    "momentum_y,ale_fixup\n";
 }
 
 HistoryWriter::HistoryWriter(std::string csv_path) : path_(std::move(csv_path)), rows_(history_header) {}
@@ -55,7 +55,7 @@ void HistoryWriter::record(const Simulation& simulation) {
   rows_ += format_double(simulation.time());
   rows_ += ',' + std::to_string(simulation.cycle());
   for (const double value : {simulation.dt(), energy.kinetic, energy.internal, energy.boundary_work, energy.source_work,
-                             energy.total, energy.relative_error, momentum[0], momentum[1]}) {
+                             energy.total, energy.relative_error, momentum[0], momentum[1], energy.ale_fixup}) {
     rows_ += ',';
     rows_ += format_double(value);
   }

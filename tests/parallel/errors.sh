@@ -34,7 +34,7 @@ check() {
 check scene "$scenes/sod.toml" --set numerics.cfl=2
 # A run that stops: the time step collapses; the message names the limiting zone, which one
 # rank owns, by its serial number.
-check collapse "$scenes/sedov.toml" --set mesh.nx=12 --set mesh.ny=12 --set numerics.dt_min=2e-3
+check collapse "$scenes/sedov.toml" --set mesh.nx=12 --set mesh.ny=12 --set numerics.dt_min=2.7e-3
 grep -q "limiting zone" "$work/collapse-np3.err" || { echo "FAIL: collapse: no limiting zone named"; status=1; }
 cmp "$work/collapse-serial/history.csv" "$work/collapse-np3/history.csv" ||
   { echo "FAIL: collapse: history.csv differs"; status=1; }

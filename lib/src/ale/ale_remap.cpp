@@ -232,7 +232,8 @@ bool AleRemap::remap(RemapState&) {
       if (!mat.strength) continue;
       for (Index z = r.begin; z < r.end; ++z) {
         Deviator d{s_.sxx[z], s_.syy[z], s_.sxy[z]};
-        radial_return(mat.strength->yield_stress, mat.strength->hardening_modulus, s_.plastic[z], mat.strength->shear_modulus, d);
+        radial_return(mat.strength->yield_stress, mat.strength->hardening_modulus, s_.plastic[z],
+                      mat.strength->shear_modulus, d);
         s_.sxx[z] = d.xx, s_.syy[z] = d.yy, s_.sxy[z] = d.xy;
       }
     }

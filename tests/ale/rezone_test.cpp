@@ -555,6 +555,8 @@ TEST(Rezone, BadOptionsAndSizesAreOneClearError) {
   EXPECT_NE(message(o, xn).find("max_move"), std::string::npos);
   std::vector<double> short_x(3);
   EXPECT_NE(message({}, short_x).find("x_new"), std::string::npos);
+  std::vector<double> x_lag = mesh.x;
+  EXPECT_THROW(rezone(mesh, rc, {}, x_lag, mesh.y, mesh.x, mesh.y, x_lag, yn, ws), Error);  // in place
 }
 
 }  // namespace

@@ -169,6 +169,19 @@ void numerics_entries(const HydroOptions& o, Digest& d) {
   }
 }
 
+void ale_entries(const AleOptions& o, Digest& d) {
+  // Lagrangian scenes keep the digest (and so their checkpoints) of before the [ale] section.
+  if (o.mode == AleMode::lagrangian) return;
+  for (const auto& row : ale_option_table().options) {
+    const double v = row.get(o);
+    if (row.type == OptionType::number || row.type == OptionType::integer) {
+      d.value("ale", row.key, v);
+    } else {
+      d.value("ale", row.key, row.value_text(v));
+    }
+  }
+}
+
 // Keys are unique within a section (a repeated one gets " #2", " #3", ...).
 void make_keys_unique(std::vector<DigestEntry>& entries) {
   std::map<std::pair<std::string, std::string>, int> seen;
@@ -228,6 +241,7 @@ std::vector<DigestEntry> setup_digest(const Simulation::Impl& s) {
   }
   d.value("sources", "manufactured", problem.sources ? "on" : "off");
   numerics_entries(problem.options, d);
+  ale_entries(problem.ale, d);
   make_keys_unique(entries);
   return entries;
 }

@@ -52,6 +52,7 @@ void Problem::validate() const {
   // The ranges of the option tables (option_table.hpp), the same that the scene reader checks.
   time_option_table().validate(*this, "problem '" + name + "': time.");
   numerics_option_table().validate(options);
+  ale_option_table().validate(ale);
   for (std::size_t k = 0; k < deposits.size(); ++k)
     deposit_option_table().validate(deposits[k], "deposit[" + std::to_string(k) + "].");
 

@@ -23,6 +23,7 @@ enum class Presence {
   momentum_source,  // manufactured momentum source
   energy_source,    // manufactured energy source
   subzonal,         // numerics.hourglass = "subzonal" or "subzonal_triangles"
+  ale,              // ale.mode is not "lagrangian"
 };
 
 // What an array takes part in (bit flags).

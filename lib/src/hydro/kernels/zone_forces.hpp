@@ -14,6 +14,7 @@
 #include "hydro/kernels/strength.hpp"
 #include "hydro/kernels/subzonal_pressure.hpp"
 #include "hydro/kernels/viscosity_bulk.hpp"
+#include "hydro/kernels/viscosity_tensor.hpp"
 #include "hydro/kernels/zone_model.hpp"
 #include "hydro/kernels/zone_status.hpp"
 #include "stagger/problem.hpp"
@@ -64,6 +65,7 @@ std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, con
   const Index* cp = in.corner_point;
   const double *vx = in.vx, *vy = in.vy, *x = in.x, *y = in.y;
   const bool bulk_q = o.viscosity == Viscosity::bulk;
+  const bool tensor_q = o.viscosity == Viscosity::tensor;
   const bool objective = o.stress_update == StressUpdate::objective;
   const bool subzonal_any = o.hourglass == Hourglass::subzonal || o.hourglass == Hourglass::subzonal_triangles;
   const bool subzonal = subzonal_any && o.hourglass_coefficient > 0;
@@ -145,6 +147,11 @@ std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, con
       out.c_half[z] = C;
     }
     stress_corner_forces(n, sh, pressure + qz, ax, ay, out.fx + b, out.fy + b);
+    // Or the tensor q (docs/algorithm.md §4.1), with the same coefficients and velocity.
+    if (tensor_q)
+      out.q[z] =
+          add_tensor_viscosity_forces(n, v.x, v.y, wx, wy, area, Geometry::template characteristic_length<N>(v, area),
+                                      rho, C, o.q1, o.q2, out.fx + b, out.fy + b);
     // Hourglass force with v* (quads).
     if (hg > 0 && n == 4) add_hourglass_forces(v.x, v.y, ax, ay, area, wx, wy, rho, C, hg, fb, out.fx + b, out.fy + b);
     // Subzonal pressures (any polygon; docs/algorithm.md §18).

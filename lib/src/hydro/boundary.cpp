@@ -156,6 +156,7 @@ Index find_wall_crossing(const Simulation::Impl& s, double dt) {
   Index first = np;
 #pragma omp parallel for schedule(static) reduction(min : first) if (np > 20000)
   for (Index p = 0; p < np; ++p) {
+    if (!s.ghost_point.empty() && s.ghost_point[p]) continue;  // a distributed run: this rank's points
     // x^{n+1} = x^n + dt v_bar, as Z2 and the commit form it.
     const double x1 = x[p] + dt * 0.5 * (vx[p] + ux[p]), y1 = y[p] + dt * 0.5 * (vy[p] + uy[p]);
     if (crossed_wall(s, p, x[p], y[p], x1, y1)) first = std::min(first, p);
@@ -168,14 +169,21 @@ std::string describe_wall_crossing(const Simulation::Impl& s, Index p, double dt
   const WallEdge* w = crossed_wall(s, p, s.x[p], s.y[p], x1, y1);
   if (!w) return {};
   const Mesh& mesh = s.mesh();
+  // A distributed run numbers points globally; a wall point off this rank is -2 - its number.
+  const auto number = [&](Index q) { return q < 0 ? -2 - q : s.global_point.empty() ? q : s.global_point[q]; };
+  const auto at = [&](Index q, double x, double y) {
+    std::ostringstream text;
+    text << "(" << (q >= 0 ? mesh.x[q] : x) << ", " << (q >= 0 ? mesh.y[q] : y) << ")";
+    return text.str();
+  };
   std::ostringstream msg;
-  msg << "point " << p << " moved from (" << s.x[p] << ", " << s.y[p] << ") to (" << x1 << ", " << y1
+  msg << "point " << number(p) << " moved from (" << s.x[p] << ", " << s.y[p] << ") to (" << x1 << ", " << y1
       << ") through the wall '" << s.problem.boundaries[w->bc].tag << "' (";
-  if (w->b >= 0)
-    msg << "its edge from point " << w->a << " (" << mesh.x[w->a] << ", " << mesh.y[w->a] << ") to point " << w->b
-        << " (" << mesh.x[w->b] << ", " << mesh.y[w->b] << ")";
+  if (w->b != -1)
+    msg << "its edge from point " << number(w->a) << " " << at(w->a, w->ax, w->ay) << " to point " << number(w->b)
+        << " " << at(w->b, w->ax + w->length * w->tx, w->ay + w->length * w->ty);
   else
-    msg << "its continuation beyond its open end, point " << w->a << " at (" << w->ax << ", " << w->ay << ")";
+    msg << "its continuation beyond its open end, point " << number(w->a) << " at (" << w->ax << ", " << w->ay << ")";
   msg << ", outward normal (" << w->nx << ", " << w->ny << "))";
   return msg.str();
 }

@@ -31,6 +31,11 @@ class Collective {
   // and handed to every rank.
   virtual std::string zone_text(const Simulation::Impl& s, Index zone,
                                 const std::function<std::string(Index)>& text) = 0;
+  // The lowest global point over the ranks: a local point (-1: none) in, a global one out.
+  virtual Index min_point(const Simulation::Impl& s, Index local_point) = 0;
+  // Text about global point `point`, made by its owner, handed to every rank.
+  virtual std::string point_text(const Simulation::Impl& s, Index point,
+                                 const std::function<std::string(Index)>& text) = 0;
   // Exact sums over the ranks, in place.
   virtual void sum(std::span<ExactSum> sums) = 0;
   // Ghost points, zones and corners get their owners' values of every present state array.

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 
 namespace stagger {
 
@@ -21,13 +22,15 @@ class ExactSum {
  public:
   // 2098 bits of doubles plus room for the carries of 2^31 * 2^1024: 68 digits of 32 bits.
   static constexpr int kDigits = 68;
+  // The digits, then the counts of NaN, +Inf and -Inf terms (a sum over ranks adds them all).
+  static constexpr int kWords = kDigits + 3;
 
   void add(double value) {
     const std::uint64_t bits = std::bit_cast<std::uint64_t>(value);
     const int exponent = static_cast<int>((bits >> 52) & 0x7ff);
     std::uint64_t significand = bits & ((std::uint64_t{1} << 52) - 1);
-    if (exponent == 0x7ff) {  // Inf or NaN: remembered apart, the total is not finite
-      special_ += value;
+    if (exponent == 0x7ff) {  // Inf or NaN: counted apart, the total is not finite
+      ++words_[std::isnan(value) ? kDigits : value > 0 ? kDigits + 1 : kDigits + 2];
       return;
     }
     if (exponent != 0) significand |= std::uint64_t{1} << 52;
@@ -41,9 +44,9 @@ class ExactSum {
     const auto d1 = static_cast<std::int64_t>(low >> 32);
     const auto d2 = static_cast<std::int64_t>(shift == 0 ? 0 : significand >> (64 - shift));
     if (bits >> 63) {
-      digits_[digit] -= d0, digits_[digit + 1] -= d1, digits_[digit + 2] -= d2;
+      words_[digit] -= d0, words_[digit + 1] -= d1, words_[digit + 2] -= d2;
     } else {
-      digits_[digit] += d0, digits_[digit + 1] += d1, digits_[digit + 2] += d2;
+      words_[digit] += d0, words_[digit + 1] += d1, words_[digit + 2] += d2;
     }
     if (++pending_ >= (1 << 30)) normalize();
   }
@@ -53,8 +56,7 @@ class ExactSum {
     ExactSum o = other;
     o.normalize();
     normalize();
-    for (int i = 0; i < kDigits; ++i) digits_[i] += o.digits_[i];
-    special_ += o.special_;
+    for (int i = 0; i < kWords; ++i) words_[i] += o.words_[i];
     normalize();
   }
 
@@ -62,46 +64,48 @@ class ExactSum {
   double value() const {
     ExactSum s = *this;
     s.normalize();
-    if (s.special_ != 0 || std::isnan(s.special_)) return s.special_;
+    const std::int64_t nans = s.words_[kDigits], positive_inf = s.words_[kDigits + 1];
+    const std::int64_t negative_inf = s.words_[kDigits + 2];
+    if (nans > 0 || (positive_inf > 0 && negative_inf > 0)) return std::numeric_limits<double>::quiet_NaN();
+    if (positive_inf > 0) return std::numeric_limits<double>::infinity();
+    if (negative_inf > 0) return -std::numeric_limits<double>::infinity();
     // After normalize every digit but the top one is in [0, 2^32); the top one carries the sign.
-    const bool negative = s.digits_[kDigits - 1] < 0;
+    const bool negative = s.words_[kDigits - 1] < 0;
     if (negative) s.negate();
     int top = kDigits - 1;
-    while (top >= 0 && s.digits_[top] == 0) --top;
+    while (top >= 0 && s.words_[top] == 0) --top;
     if (top < 0) return 0.0;
     // The top three digits (at least 65 significant bits), summed from the smallest: the
     // rounding error of the sum is below an ulp of the total, and it depends only on the digits.
     double total = 0;
     for (int i = std::max(0, top - 2); i <= top; ++i)
-      total += std::ldexp(static_cast<double>(s.digits_[i]), 32 * i - 1074);
+      total += std::ldexp(static_cast<double>(s.words_[i]), 32 * i - 1074);
     return negative ? -total : total;
   }
 
-  // The raw digits, for a sum over MPI ranks (normalized first: every digit of a
-  // normalized accumulator but the top is below 2^32, so ranks can add them as int64).
-  std::array<std::int64_t, kDigits>& digits() {
+  // The raw words, for a sum over MPI ranks (normalized first: every digit of a normalized
+  // accumulator but the top is below 2^32, so ranks can add them as int64).
+  std::array<std::int64_t, kWords>& words() {
     normalize();
-    return digits_;
+    return words_;
   }
-  double& special() { return special_; }
 
  private:
   void normalize() {
     for (int i = 0; i + 1 < kDigits; ++i) {
-      const std::int64_t carry = digits_[i] >> 32;  // floor division by 2^32
-      digits_[i] -= carry * (std::int64_t{1} << 32);
-      digits_[i + 1] += carry;
+      const std::int64_t carry = words_[i] >> 32;  // floor division by 2^32
+      words_[i] -= carry * (std::int64_t{1} << 32);
+      words_[i + 1] += carry;
     }
     pending_ = 0;
   }
   // Two's complement of the whole number (top digit negative -> magnitude, normalized).
   void negate() {
-    for (auto& d : digits_) d = -d;
+    for (int i = 0; i < kDigits; ++i) words_[i] = -words_[i];
     normalize();
   }
 
-  std::array<std::int64_t, kDigits> digits_{};
-  double special_ = 0;  // the sum of the Inf and NaN terms
+  std::array<std::int64_t, kWords> words_{};
   std::int64_t pending_ = 0;
 };
 

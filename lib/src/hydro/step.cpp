@@ -430,7 +430,9 @@ bool Simulation::Impl::try_step(double dt) {
     throw_zone_failure(*this, failure, "at the end of the step");
   }
   // No point through a wall (docs/algorithm.md §10): retried like a tangled zone.
-  if (find_wall_crossing(*this, dt) >= 0) {
+  Index crossing = find_wall_crossing(*this, dt);
+  if (collective) crossing = collective->min_point(*this, crossing);  // every rank retries alike
+  if (crossing >= 0) {
     have_previous_forces = false;
     recompute_state();
     return false;
@@ -513,9 +515,17 @@ void Simulation::Impl::step(double t_stop) {
     if (attempt >= o.max_retries) {
       // Report the tangled zone at the end of the last attempt, or the point through a wall.
       std::ostringstream msg;
-      const Index tangled = find_tangled_zone(dt_taken);
-      if (const Index p = tangled < 0 ? find_wall_crossing(*this, dt_taken) : -1; p >= 0) {
-        msg << "cycle " << cycle << ", t = " << t << ": " << describe_wall_crossing(*this, p, dt_taken)
+      Index tangled = find_tangled_zone(dt_taken);
+      // A distributed run: the lowest tangled zone over the ranks (global), worded by its owner.
+      const std::int64_t tangled_code =
+          collective ? collective->min_failure(*this, tangled >= 0 ? failure_code(tangled, 0) : kNoFailure) : 0;
+      if (collective) tangled = tangled_code != kNoFailure ? failure_zone(tangled_code) : -1;
+      Index p = tangled < 0 ? find_wall_crossing(*this, dt_taken) : -1;
+      if (collective && tangled < 0) p = collective->min_point(*this, p);
+      if (p >= 0) {
+        const auto crossing_text = [&](Index q) { return describe_wall_crossing(*this, q, dt_taken); };
+        msg << "cycle " << cycle << ", t = " << t << ": "
+            << (collective ? collective->point_text(*this, p, crossing_text) : crossing_text(p))
             << " even with dt = " << dt_taken << " after " << attempt << " retries (the mesh is folding against the "
             << "wall; " << tangling_remedies(o) << ")";
         throw Error(msg.str());
@@ -525,8 +535,7 @@ void Simulation::Impl::step(double t_stop) {
           << " after " << attempt << " retries";
       const auto describe = [&](Index z) { return "; " + describe_zone(*this, z); };
       if (collective) {
-        const std::int64_t code = collective->min_failure(*this, tangled >= 0 ? failure_code(tangled, 0) : kNoFailure);
-        if (code != kNoFailure) msg << collective->zone_text(*this, failure_zone(code), describe);
+        if (tangled >= 0) msg << collective->zone_text(*this, tangled, describe);  // tangled is global
       } else if (tangled >= 0) {
         msg << describe(tangled);
       }

@@ -195,8 +195,10 @@ class MpiCollective final : public Collective {
  public:
   MPI_Comm comm = MPI_COMM_NULL;
   int my_rank = 0, size = 1;
-  std::vector<int> zone_owner;    // global zone -> rank
-  std::vector<Index> zone_local;  // global zone -> this rank's local zone, -1 when absent
+  std::vector<int> zone_owner;     // global zone -> rank
+  std::vector<Index> zone_local;   // global zone -> this rank's local zone, -1 when absent
+  std::vector<int> point_owner;    // global point -> rank
+  std::vector<Index> point_local;  // global point -> this rank's local point, -1 when absent
   std::vector<Neighbour> neighbours;
   std::vector<const StateField*> fields;  // the present state arrays, in table order
   std::vector<Index> own_points, own_zones, own_corners;
@@ -249,20 +251,32 @@ class MpiCollective final : public Collective {
     return result;
   }
 
+  Index min_point(const Simulation::Impl& s, Index local_point) override {
+    int point = local_point >= 0 ? s.global_point[local_point] : INT_MAX, result = INT_MAX;
+    MPI_Allreduce(&point, &result, 1, MPI_INT, MPI_MIN, comm);
+    return result == INT_MAX ? -1 : result;
+  }
+
+  std::string point_text(const Simulation::Impl&, Index point, const std::function<std::string(Index)>& text) override {
+    const int owner = point >= 0 && point < static_cast<Index>(point_owner.size()) ? point_owner[point] : 0;
+    std::string result;
+    if (my_rank == owner && point_local[point] >= 0) result = text(point_local[point]);
+    int length = static_cast<int>(result.size());
+    MPI_Bcast(&length, 1, MPI_INT, owner, comm);
+    result.resize(length);
+    MPI_Bcast(result.data(), length, MPI_CHAR, owner, comm);
+    return result;
+  }
+
   void sum(std::span<ExactSum> sums) override {
-    const std::size_t n = sums.size(), digits = ExactSum::kDigits;
-    std::vector<std::int64_t> in(n * digits), out(n * digits);
-    std::vector<double> special_in(n), special_out(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      std::copy(sums[i].digits().begin(), sums[i].digits().end(), in.begin() + i * digits);
-      special_in[i] = sums[i].special();
-    }
+    // One integer sum of every accumulator's words: exact, so any reduction order gives the same.
+    const std::size_t n = sums.size(), words = ExactSum::kWords;
+    std::vector<std::int64_t> in(n * words), out(n * words);
+    for (std::size_t i = 0; i < n; ++i)
+      std::copy(sums[i].words().begin(), sums[i].words().end(), in.begin() + i * words);
     MPI_Allreduce(in.data(), out.data(), static_cast<int>(in.size()), MPI_INT64_T, MPI_SUM, comm);
-    MPI_Allreduce(special_in.data(), special_out.data(), static_cast<int>(n), MPI_DOUBLE, MPI_SUM, comm);
-    for (std::size_t i = 0; i < n; ++i) {
-      std::copy(out.begin() + i * digits, out.begin() + (i + 1) * digits, sums[i].digits().begin());
-      sums[i].special() = special_out[i];
-    }
+    for (std::size_t i = 0; i < n; ++i)
+      std::copy(out.begin() + i * words, out.begin() + (i + 1) * words, sums[i].words().begin());
   }
 
   void exchange(Simulation::Impl& s) override {
@@ -328,7 +342,7 @@ class MpiCollective final : public Collective {
     w.t = s.t, w.dt_last = s.dt_last, w.dt_next = s.dt_next, w.dt_control_prev = s.dt_control_prev;
     w.cycle = s.cycle, w.have_previous_forces = s.have_previous_forces;
     w.energy_initial = s.energy_initial, w.boundary_work = s.boundary_work, w.source_work = s.source_work;
-    w.dt_reason = s.dt_reason, w.dt_zone = s.dt_zone;
+    w.dt_reason = s.dt_reason, w.dt_zone = s.dt_zone, w.ale_fixup = s.ale_fixup;
     return whole.get();
   }
 };
@@ -369,6 +383,8 @@ void on_every_rank(MPI_Comm comm, const std::function<void()>& work) {
 Simulation distribute(Problem problem, MPI_Comm comm) {
   const int size = comm_size(comm), rank = comm_rank(comm);
   if (size == 1) return Simulation(std::move(problem));
+  if (problem.ale.mode != AleMode::lagrangian)
+    throw Error("ale.mode: a distributed run is Lagrangian only yet (docs/parallel.md); run an ALE scene on one rank");
   for (const auto& bc : problem.boundaries)
     if (bc.kind == BoundaryKind::periodic)
       throw Error("periodic boundary '" + bc.tag + "': a distributed run cannot take periodic boundaries yet " +
@@ -386,6 +402,7 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
   part_problem.sources = problem.sources;
   part_problem.options = problem.options;
   part_problem.t_end = problem.t_end;
+  part_problem.ale = problem.ale;
   // The whole set-up, as the serial run makes it (its errors are the same on every rank).
   auto whole = std::make_unique<Simulation>(std::move(problem));
   const Simulation::Impl& g = DistributedAccess::impl(*whole);
@@ -448,6 +465,16 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
   s.t = g.t, s.dt_last = g.dt_last, s.dt_next = g.dt_next, s.dt_control_prev = g.dt_control_prev;
   s.cycle = g.cycle, s.have_previous_forces = g.have_previous_forces, s.dt_zone = g.dt_zone;
   s.energy_initial = g.energy_initial, s.boundary_work = g.boundary_work, s.source_work = g.source_work;
+  // The walls as fixed lines (the no-crossing check): the whole problem's, so that a point is
+  // tested against every wall as in the serial run; a wall point off this part becomes -2 - its number.
+  s.wall_edges = g.wall_edges;
+  s.wall_rays = g.wall_rays;
+  s.wall_grid = g.wall_grid;
+  for (auto* walls : {&s.wall_edges, &s.wall_rays})
+    for (WallEdge& w : *walls) {
+      w.a = part.point_local[w.a] >= 0 ? part.point_local[w.a] : -2 - w.a;
+      if (w.b >= 0) w.b = part.point_local[w.b] >= 0 ? part.point_local[w.b] : -2 - w.b;
+    }
 
   // Ownership, the global numbers, and the ranges split into own and ghost runs.
   const Index nz = static_cast<Index>(part.zones.size()), np = static_cast<Index>(part.points.size());
@@ -473,6 +500,8 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
     if (!s.ghost_point[p]) collective->own_points.push_back(p);
   append_corners(s, collective->own_zones, collective->own_corners);
   collective->zone_local = std::move(part.zone_local);
+  collective->point_owner = point_owner;
+  collective->point_local = part.point_local;
 
   // Halo lists: this rank's ghosts by owner; the owners learn them as global numbers.
   std::vector<std::vector<Index>> ghost_points(size), ghost_zones(size);

@@ -54,6 +54,14 @@ void Problem::validate() const {
   numerics_option_table().validate(options);
   for (std::size_t k = 0; k < deposits.size(); ++k)
     deposit_option_table().validate(deposits[k], "deposit[" + std::to_string(k) + "].");
+  if (options.geometry == CoordinateSystem::rz) {
+    // Not (yet) derived for the area-weighted rz scheme (docs/algorithm.md §19).
+    require(options.hourglass != Hourglass::subzonal && options.hourglass != Hourglass::subzonal_triangles,
+            "problem '" + name + "': numerics.geometry = \"rz\" does not support the subzonal hourglass options; use "
+            "numerics.hourglass = \"gamma\" or \"flanagan_belytschko\"");
+    require(!(sources && sources->momentum),
+            "problem '" + name + "': numerics.geometry = \"rz\" does not support a momentum source");
+  }
 
   std::set<std::string> material_names;
   for (const auto& m : materials) {

@@ -37,6 +37,8 @@ const std::array kFields = {
     StateField{"ext_fy", &I::ext_fy, Entity::point, Presence::external},
     StateField{"src_fx", &I::src_fx, Entity::point, Presence::momentum_source},
     StateField{"src_fy", &I::src_fy, Entity::point, Presence::momentum_source},
+    StateField{"axis_ax", &I::axis_ax, Entity::point, Presence::rz, kC},
+    StateField{"axis_ay", &I::axis_ay, Entity::point, Presence::rz, kC},
     // Zones.
     StateField{"zone_mass", &I::zone_mass, Entity::zone, Presence::always, kR},
     StateField{"area", &I::area, Entity::zone, Presence::always},
@@ -78,6 +80,7 @@ const std::array kFields = {
     StateField{"corner_scratch", &I::corner_scratch, Entity::corner, Presence::momentum_source},
     // Constant subzonal masses (set-up; a remap carries them like the zone masses).
     StateField{"corner_mass", &I::corner_mass, Entity::corner, Presence::subzonal, kR},
+    StateField{"corner_area_mass", &I::corner_area_mass, Entity::corner, Presence::rz},
 };
 
 }  // namespace
@@ -108,6 +111,8 @@ bool present(const Simulation::Impl& s, Presence presence) {
     case Presence::subzonal:
       return s.problem.options.hourglass == Hourglass::subzonal ||
              s.problem.options.hourglass == Hourglass::subzonal_triangles;
+    case Presence::rz:
+      return s.problem.options.geometry == CoordinateSystem::rz;
   }
   return false;
 }

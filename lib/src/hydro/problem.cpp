@@ -57,8 +57,9 @@ void Problem::validate() const {
   if (options.geometry == CoordinateSystem::rz) {
     // Not (yet) derived for the area-weighted rz scheme (docs/algorithm.md §19).
     require(options.hourglass != Hourglass::subzonal && options.hourglass != Hourglass::subzonal_triangles,
-            "problem '" + name + "': numerics.geometry = \"rz\" does not support the subzonal hourglass options; use "
-            "numerics.hourglass = \"gamma\" or \"flanagan_belytschko\"");
+            "problem '" + name +
+                "': numerics.geometry = \"rz\" does not support the subzonal hourglass options; use "
+                "numerics.hourglass = \"gamma\" or \"flanagan_belytschko\"");
     require(!(sources && sources->momentum),
             "problem '" + name + "': numerics.geometry = \"rz\" does not support a momentum source");
   }

@@ -203,8 +203,8 @@ std::int64_t Simulation::Impl::zone_forces(const double* px, const double* py, d
                           dt_half,
                           t_eval,
                           data_or_null(corner_mass)};
-  const ZoneForceOutput out{corner_fx.data(),       corner_fy.data(),      q.data(),
-                            data_or_null(rho_half), data_or_null(c_half),  data_or_null(sxx_half),
+  const ZoneForceOutput out{corner_fx.data(),       corner_fy.data(),       q.data(),
+                            data_or_null(rho_half), data_or_null(c_half),   data_or_null(sxx_half),
                             data_or_null(syy_half), data_or_null(sxy_half), data_or_null(corner_area_mass)};
   const HydroOptions& o = problem.options;
   std::int64_t failure = kNoFailure;
@@ -248,9 +248,8 @@ void Simulation::Impl::evaluate_forces_now() {
 
 // rz: the area-weighted corner forces made true ones (docs/algorithm.md §19).
 void Simulation::Impl::weight_rz_forces() {
-  weight_rz_corner_forces(mesh().num_points(), point_corner_begin.data(), point_corners.data(),
-                          corner_area_mass.data(), point_mass.data(), corner_fx.data(), corner_fy.data(),
-                          axis_ax.data(), axis_ay.data());
+  weight_rz_corner_forces(mesh().num_points(), point_corner_begin.data(), point_corners.data(), corner_area_mass.data(),
+                          point_mass.data(), corner_fx.data(), corner_fy.data(), axis_ax.data(), axis_ay.data());
 }
 
 // External point forces at the half step: applied pressures (boundary work) and momentum
@@ -320,8 +319,8 @@ void Simulation::Impl::correct_velocity(double dt, double t_new) {
                  external ? ext_fy.data() : nullptr, external ? data_or_null(src_fx) : nullptr,
                  external ? data_or_null(src_fy) : nullptr, vx_new.data(), vy_new.data());
   if (rz)
-    move_axis_points(axis_points.size(), axis_points.data(), dt, axis_ax.data(), axis_ay.data(), vx.data(),
-                     vy.data(), vx_new.data(), vy_new.data());
+    move_axis_points(axis_points.size(), axis_points.data(), dt, axis_ax.data(), axis_ay.data(), vx.data(), vy.data(),
+                     vx_new.data(), vy_new.data());
   for (std::size_t i = 0; i < constrained.size(); ++i) {
     free_vx[i] = vx_new[constrained[i]];
     free_vy[i] = vy_new[constrained[i]];

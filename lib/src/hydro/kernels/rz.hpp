@@ -13,8 +13,7 @@ namespace stagger {
 // rate lacks: (1/V) dV/dt - (1/A) dA/dt, so that tr D = (1/V) dV/dt exactly.
 template <int N = 0>
 [[gnu::always_inline]] inline double hoop_strain_rate(const ZoneVertices& v, const double* ux, const double* uy,
-                                                      const double* ax, const double* ay, double area,
-                                                      double volume) {
+                                                      const double* ax, const double* ay, double area, double volume) {
   const int n = N ? N : v.n;
   return RzGeometry::volume_divergence<N>(v, ux, uy, volume) - RzGeometry::divergence(n, ux, uy, ax, ay, area);
 }
@@ -30,8 +29,8 @@ template <int N = 0>
 // The hoop body force of the stress on the corners, area-weighted: rho dv_r/dt = ... +
 // (sigma_rr - sigma_thth) / r, rho dv_z/dt = ... + sigma_rz / r, with sigma_rr - sigma_thth
 // = 2 S_rr + S_zz (the pressure cancels) and r the zone's centroid radius V / A.
-[[gnu::always_inline]] inline void add_hoop_forces(int n, const Deviator& s, const double* corner_area,
-                                                   double radius, double* fx, double* fy) {
+[[gnu::always_inline]] inline void add_hoop_forces(int n, const Deviator& s, const double* corner_area, double radius,
+                                                   double* fx, double* fy) {
   const double br = (2.0 * s.xx + s.yy) / radius, bz = s.xy / radius;
   for (int k = 0; k < n; ++k) {
     fx[k] += corner_area[k] * br;

@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
       print(stagger::deposit_option_table());
       print(stagger::strength_option_table());
       print(stagger::numerics_option_table());
+      print(stagger::ale_option_table());
       print(stagger::output_option_table());
       return 0;
     }

@@ -109,7 +109,7 @@ TEST(KillDashNine, LeavesOnlyCompleteFilesAndAResumableCheckpoint) {
   const auto lines = io_test::split_lines(io_test::read_text(directory + "/history.csv"));
   ASSERT_GE(lines.size(), 2u);
   for (const std::string& line : lines) {
-    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 10) << line;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 11) << line;
   }
 
   // The checkpoint resumes (to a nearer end time) and finishes cleanly; stale temporary

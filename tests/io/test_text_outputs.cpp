@@ -102,12 +102,12 @@ TEST(HistoryWriter, HeaderAndOneFullPrecisionRowPerRecord) {
   ASSERT_EQ(lines.size(), 5u);
   EXPECT_EQ(lines[0],
             "time,cycle,dt,kinetic,internal,boundary_work,source_work,total,relative_energy_error,momentum_x,"
-            "momentum_y");
+            "momentum_y,ale_fixup");
   for (std::size_t row = 1; row < lines.size(); ++row) {
     std::vector<std::string> cells;
     std::stringstream line(lines[row]);
     for (std::string cell; std::getline(line, cell, ',');) cells.push_back(cell);
-    ASSERT_EQ(cells.size(), 11u) << lines[row];
+    ASSERT_EQ(cells.size(), 12u) << lines[row];
     EXPECT_EQ(std::stol(cells[1]), static_cast<long>(row - 1));
   }
   // The last row holds the simulation's values exactly (17 significant digits).
@@ -150,7 +150,7 @@ TEST(Summary, JsonIsWellFormedAndCarriesTheContractKeys) {
   EXPECT_EQ(json["time"].number, simulation.time());
   EXPECT_DOUBLE_EQ(json["zone_cycles_per_second"].number, 10 * 4 / 0.5);
   for (const char* key :
-       {"initial", "final", "kinetic", "internal", "boundary_work", "source_work", "relative_error"}) {
+       {"initial", "final", "kinetic", "internal", "boundary_work", "source_work", "ale_fixup", "relative_error"}) {
     EXPECT_TRUE(json["energy"].has(key)) << key;
   }
   EXPECT_EQ(json["energy"]["final"].number, simulation.energy().total);

@@ -54,7 +54,7 @@ TEST(Rz, HoopStressOfAUniformlyExpandingRingIsTheExactElasticOne) {
     const VelocityGradient L = RzGeometry::velocity_gradient(4, ux, uy, ax, ay, area);
     s = advance_stress(false, mu, s, s, L, dt);
     add_hoop_stress_rate(mu, hoop_strain_rate<4>(v, ux, uy, ax, ay, area, RzGeometry::volume<4>(v)), dt, s);
-    plastic += radial_return(yield, mu, s);
+    plastic += radial_return(yield, 0.0, plastic, mu, s);
     t += dt;
     const double elastic = 2.0 * mu * a * t / 3.0;
     const double thth = -(s.xx + s.yy);

@@ -153,7 +153,8 @@ TEST(OptionTableDocs, AChangedOrMissingBlockIsDetected) {
       "<!-- begin generated: material.strength options -->\n<!-- end generated: material.strength options -->\n"
       "<!-- begin generated: ideal_gas options -->\n<!-- end generated: ideal_gas options -->\n"
       "<!-- begin generated: mie_gruneisen options -->\n<!-- end generated: mie_gruneisen options -->\n"
-      "<!-- begin generated: jwl options -->\n<!-- end generated: jwl options -->\n";
+      "<!-- begin generated: jwl options -->\n<!-- end generated: jwl options -->\n"
+      "<!-- begin generated: ale options -->\n<!-- end generated: ale options -->\n";
   const std::string generated = stagger::with_generated_option_tables(document);
   EXPECT_EQ(generated.find("stale"), std::string::npos);
   EXPECT_NE(generated.find("| `end` | number | required | > 0 | time |"), std::string::npos);
@@ -184,6 +185,7 @@ TEST(OptionTableRows, DefaultsAreAdmissibleAndKeysUnique) {
   check(stagger::ideal_gas_option_table());
   check(stagger::mie_gruneisen_option_table());
   check(stagger::jwl_option_table());
+  check(stagger::ale_option_table());
 }
 
 TEST(OptionTableRows, RangeTexts) {
@@ -332,7 +334,7 @@ TEST_F(OptionTables, ProblemValidateUsesTheTables) {
   rejects(problem, "material 'copper': s: must be >= 0, got -0.5");
   problem = scene.problem;
   problem.options.viscosity = static_cast<stagger::Viscosity>(7);
-  rejects(problem, "numerics.viscosity: must be one of \"bulk\" or \"edge\", got 7");
+  rejects(problem, "numerics.viscosity: must be one of \"bulk\", \"edge\" or \"tensor\", got 7");
 
   stagger::RunControl control;
   EXPECT_NO_THROW(control.validate());

@@ -80,6 +80,8 @@ struct OptionTable {
 
 /// [numerics]: HydroOptions.
 const OptionTable<HydroOptions>& numerics_option_table();
+/// [ale]: AleOptions.
+const OptionTable<AleOptions>& ale_option_table();
 /// [time]: the end time of a Problem.
 const OptionTable<Problem>& time_option_table();
 /// [output]: the scene-settable part of RunControl (the directory, name, progress line and

@@ -64,8 +64,9 @@ struct BoundaryCondition {
   std::string partner;                            ///< periodic: the other tag
 };
 
-/// Artificial viscosity: zone-centred bulk q, or the edge-centred viscosity with limiter.
-enum class Viscosity { bulk, edge };
+/// Artificial viscosity: zone-centred bulk q, the edge-centred viscosity with limiter, or the
+/// tensor q from corner strain rates (docs/algorithm.md §4.1).
+enum class Viscosity { bulk, edge, tensor };
 /// Hourglass control (docs/algorithm.md §6): the paper's viscosity on the mode
 /// Gamma = (1,-1,1,-1), or the Flanagan-Belytschko projection (better on distorted quads),
 /// or subzonal pressures from constant subzone masses (any polygon; docs/algorithm.md §18)
@@ -85,12 +86,14 @@ enum class CoordinateSystem { planar, rz };
 /// in option_table.hpp, which the scene reader, validate() and docs/scenes.md share.
 struct HydroOptions {
   double cfl = 0.15;  ///< c_t, in (0, 1)
-  Viscosity viscosity = Viscosity::bulk;
+  // Defaults chosen from measurements over the verification problems (docs/algorithm.md §4.2,
+  // docs/verification.md "Default numerics").
+  Viscosity viscosity = Viscosity::tensor;
   double q1 = 1.5, q2 = 0.06;           ///< bulk q (quadratic, linear)
   double edge_c1 = 0.5, edge_c2 = 1.0;  ///< edge viscosity (linear, quadratic)
   bool edge_limiter = true;             ///< Christensen limiter for the edge viscosity
-  Hourglass hourglass = Hourglass::gamma;
-  double hourglass_coefficient = 0.1;  ///< Q; 0 turns hourglass control off
+  Hourglass hourglass = Hourglass::subzonal_triangles;
+  double hourglass_coefficient = 2.0;  ///< Q (subzonal: merit factor); 0 turns hourglass control off
   StressUpdate stress_update = StressUpdate::rate;
   bool fresh_predictor = false;  ///< evaluate f^n afresh each cycle (reference option)
   double volume_limit = 0.1;     ///< f_A
@@ -104,6 +107,28 @@ struct HydroOptions {
   /// Cartesian mesh) trips it while its area is still positive; false checks zone areas only.
   bool check_corner_areas = true;
   CoordinateSystem geometry = CoordinateSystem::planar;  ///< planar or axisymmetric (docs/algorithm.md §19)
+};
+
+/// How the mesh moves (a scene's [ale]; docs/ale.md): with the material (Lagrangian), rezoned
+/// and remapped (ALE), or back to the initial mesh after every step (Eulerian).
+enum class AleMode { lagrangian, ale, eulerian };
+/// The rezone of ale.mode = "ale" (docs/ale.md, "Rezone").
+enum class AleRezone { winslow, reference_jacobian };
+/// The limiter of the remap's piecewise-linear reconstruction.
+enum class AleLimiter { barth_jespersen, none };
+
+/// ALE options (a scene's [ale]). Ranges, units and meanings: ale_option_table() in
+/// option_table.hpp. mode = lagrangian (the default) leaves the run bitwise Lagrangian.
+struct AleOptions {
+  AleMode mode = AleMode::lagrangian;
+  AleRezone rezone = AleRezone::winslow;
+  double relaxation = 0.5;     ///< rezone: fraction of the way from the Lagrangian to the smoothed mesh
+  int rezone_iterations = 2;   ///< rezone: smoothing sweeps per remap
+  double corner_angle = 0.5;   ///< rezone: boundary points slide where the boundary turns less (degrees)
+  double max_move = 0.5;       ///< rezone: largest move of a point per remap, in its shortest edges
+  int remap_every = 1;         ///< remap after every N-th cycle
+  double quality_trigger = 0;  ///< also remap when the worst zone quality falls below it; 0: off
+  AleLimiter limiter = AleLimiter::barth_jespersen;
 };
 
 /// Manufactured-solution source terms (docs/algorithm.md §1 steps 3, 4 and 7).
@@ -126,6 +151,7 @@ struct Problem {
   std::vector<EnergyDeposit> deposits;        ///< point energy sources at t = 0 (Sedov)
   std::optional<Sources> sources;             ///< manufactured-solution sources, if any
   HydroOptions options;                       ///< numerics (defaults: docs/scenes.md [numerics])
+  AleOptions ale;                             ///< mesh motion (defaults: Lagrangian; docs/ale.md)
   double t_end = 0;                           ///< end time, > 0
   /// Checks names, ranges and completeness; throws stagger::Error with the offending item.
   void validate() const;

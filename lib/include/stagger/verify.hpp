@@ -307,6 +307,12 @@ class HowellBallShell {
 /// inner/outer_stopping_radius_exact, stopping_time_exact.
 Reference be_shell_reference(const ShellParameters& parameters = {});
 
+/// A Taylor bar moving in -y onto the rigid wall y = y0 (the lowest y of the initial mesh):
+/// no exact solution, diagnostics only (docs/solids.md §8): final_length (top - y0),
+/// length_ratio (to the initial length), impact_face_width (the x extent of the points on the
+/// wall), max_width (the x extent of the bar), max_plastic_strain.
+Reference taylor_bar_reference();
+
 /// Composition B with the JWL fit of the paper's section 5.2, in cm-g-us (pressure in Mbar,
 /// energy per volume in Mbar cc/cc = 100 kJ/cc).
 struct DetonationParameters {

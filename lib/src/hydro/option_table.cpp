@@ -242,6 +242,8 @@ std::string OptionTable<Options>::markdown() const {
 }
 
 template struct Option<HydroOptions>;
+template struct Option<AleOptions>;
+template struct OptionTable<AleOptions>;
 template struct Option<Problem>;
 template struct Option<RunControl>;
 template struct Option<EnergyDeposit>;
@@ -267,10 +269,11 @@ const OptionTable<HydroOptions>& numerics_option_table() {
       "HydroOptions",
       {
           number<&O::cfl>("cfl", {0, 1, true, true}, "-", "Courant number c_t of the time-step limit (§9)"),
-          choice<&O::viscosity>("viscosity", {"bulk", "edge"},
-                                "zone-centred bulk q (§4) or edge viscosity with limiter (§5)"),
-          number<&O::q1>("q1", at_least(0), "-", "bulk q, quadratic coefficient (§4)"),
-          number<&O::q2>("q2", at_least(0), "-", "bulk q, linear coefficient (§4)"),
+          choice<&O::viscosity>("viscosity", {"bulk", "edge", "tensor"},
+                                "zone-centred bulk q (§4), edge viscosity with limiter (§5) or tensor q from "
+                                "corner strain rates (§4.1)"),
+          number<&O::q1>("q1", at_least(0), "-", "bulk and tensor q, quadratic coefficient (§4, §4.1)"),
+          number<&O::q2>("q2", at_least(0), "-", "bulk and tensor q, linear coefficient (§4, §4.1)"),
           number<&O::edge_c1>("edge_c1", at_least(0), "-", "edge viscosity, linear coefficient c1 (§5)"),
           number<&O::edge_c2>("edge_c2", at_least(0), "-", "edge viscosity, quadratic coefficient c2 (§5)"),
           flag<&O::edge_limiter>("edge_limiter", "Christensen limiter of the edge viscosity (§5)"),
@@ -293,10 +296,39 @@ const OptionTable<HydroOptions>& numerics_option_table() {
                                    "halvings of dt for a step that tangles the mesh (§9)"),
           flag<&O::check_corner_areas>("check_corner_areas",
                                        "a non-positive median-mesh corner area counts as tangling; false: zone "
-                                       "areas only (Sedov, Noh: a zone near the origin becomes a chevron, §9)"),
+                                       "areas only (a chevron zone passes; no shipped scene needs it, §9)"),
           choice<&O::geometry>("geometry", {"planar", "rz"},
                                "planar (x, y) per unit depth, or axisymmetric: x = r >= 0, y = z, masses and "
                                "energies per radian (§19)"),
+      }};
+  return table;
+}
+
+const OptionTable<AleOptions>& ale_option_table() {
+  using A = AleOptions;
+  static const OptionTable<AleOptions> table{
+      "ale",
+      "AleOptions",
+      {
+          choice<&A::mode>("mode", {"lagrangian", "ale", "eulerian"},
+                           "mesh motion: with the material, rezoned and remapped, or back to the initial mesh "
+                           "after every step (docs/ale.md)"),
+          choice<&A::rezone>("rezone", {"winslow", "reference_jacobian"},
+                             "rezone of mode \"ale\": Winslow smoothing or towards the initial zone shapes"),
+          number<&A::relaxation>("relaxation", {0, 1, false, false}, "-",
+                                 "rezone: how far from the Lagrangian towards the smoothed mesh; 0: Lagrangian"),
+          integer<&A::rezone_iterations>("rezone_iterations", {0, 1000, false, false}, "-",
+                                         "rezone: smoothing sweeps per remap"),
+          number<&A::corner_angle>("corner_angle", {0, 90, false, true}, "degrees",
+                                   "rezone: boundary points slide only where the boundary turns by less"),
+          number<&A::max_move>("max_move", {0, 1, true, false}, "-",
+                               "rezone: largest move of a point per remap, in units of its shortest edge"),
+          integer<&A::remap_every>("remap_every", {1, 1e9, false, false}, "cycles", "remap after every N-th cycle"),
+          number<&A::quality_trigger>("quality_trigger", {0, 1, false, true}, "-",
+                                      "also remap when the worst zone shape quality (1 at t = 0) falls below it; "
+                                      "0: off"),
+          choice<&A::limiter>("limiter", {"barth_jespersen", "none"},
+                              "limiter of the remap's linear reconstruction (none: second order without bounds)"),
       }};
   return table;
 }
@@ -353,6 +385,9 @@ const OptionTable<Strength>& strength_option_table() {
           required_number<&S::yield_stress>("yield_stress", above(0), "pressure",
                                             "von Mises yield stress Y (§7); a very large value gives an elastic "
                                             "material"),
+          number<&S::hardening_modulus>("hardening_modulus", at_least(0), "pressure",
+                                        "linear isotropic hardening H: the yield stress is Y + H eps_p with eps_p "
+                                        "the equivalent plastic strain (§7); 0 is perfectly plastic"),
       }};
   return table;
 }
@@ -407,6 +442,7 @@ namespace {
 std::string generated_table(const std::string& section) {
   if (section == numerics_option_table().section) return numerics_option_table().markdown();
   if (section == time_option_table().section) return time_option_table().markdown();
+  if (section == ale_option_table().section) return ale_option_table().markdown();
   if (section == output_option_table().section) return output_option_table().markdown();
   if (section == deposit_option_table().section) return deposit_option_table().markdown();
   if (section == strength_option_table().section) return strength_option_table().markdown();
@@ -414,7 +450,7 @@ std::string generated_table(const std::string& section) {
   if (section == mie_gruneisen_option_table().section) return mie_gruneisen_option_table().markdown();
   if (section == jwl_option_table().section) return jwl_option_table().markdown();
   throw Error("generated option table: unknown section '" + section +
-              "' (known: numerics, time, output, deposit, material.strength, ideal_gas, mie_gruneisen, jwl)");
+              "' (known: numerics, time, output, deposit, material.strength, ideal_gas, mie_gruneisen, jwl, ale)");
 }
 
 }  // namespace
@@ -422,8 +458,8 @@ std::string generated_table(const std::string& section) {
 std::string with_generated_option_tables(const std::string& document) {
   static const std::string begin_mark = "<!-- begin generated: ", end_mark = "<!-- end generated: ",
                            close = " options -->";
-  const std::vector<std::string> sections = {"numerics",          "time",      "output",        "deposit",
-                                             "material.strength", "ideal_gas", "mie_gruneisen", "jwl"};
+  const std::vector<std::string> sections = {"numerics",  "time",          "output", "deposit", "material.strength",
+                                             "ideal_gas", "mie_gruneisen", "jwl",    "ale"};
   std::vector<std::string> seen;
   std::istringstream in(document);
   std::string out, line;

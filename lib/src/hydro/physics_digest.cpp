@@ -128,6 +128,9 @@ void material_entries(const Material& mat, Digest& d) {
   if (mat.strength) {
     d.value("materials", k + "strength.shear_modulus", mat.strength->shear_modulus);
     d.value("materials", k + "strength.yield_stress", mat.strength->yield_stress);
+    // Only when set, so digests of scenes without hardening stay as they were.
+    if (mat.strength->hardening_modulus != 0)
+      d.value("materials", k + "strength.hardening_modulus", mat.strength->hardening_modulus);
   } else {
     d.value("materials", k + "strength", "none");
   }
@@ -162,6 +165,19 @@ void numerics_entries(const HydroOptions& o, Digest& d) {
       d.value("numerics", row.key, v);
     } else {
       d.value("numerics", row.key, row.value_text(v));
+    }
+  }
+}
+
+void ale_entries(const AleOptions& o, Digest& d) {
+  // Lagrangian scenes keep the digest (and so their checkpoints) of before the [ale] section.
+  if (o.mode == AleMode::lagrangian) return;
+  for (const auto& row : ale_option_table().options) {
+    const double v = row.get(o);
+    if (row.type == OptionType::number || row.type == OptionType::integer) {
+      d.value("ale", row.key, v);
+    } else {
+      d.value("ale", row.key, row.value_text(v));
     }
   }
 }
@@ -225,6 +241,7 @@ std::vector<DigestEntry> setup_digest(const Simulation::Impl& s) {
   }
   d.value("sources", "manufactured", problem.sources ? "on" : "off");
   numerics_entries(problem.options, d);
+  ale_entries(problem.ale, d);
   make_keys_unique(entries);
   return entries;
 }

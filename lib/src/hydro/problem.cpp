@@ -52,14 +52,11 @@ void Problem::validate() const {
   // The ranges of the option tables (option_table.hpp), the same that the scene reader checks.
   time_option_table().validate(*this, "problem '" + name + "': time.");
   numerics_option_table().validate(options);
+  ale_option_table().validate(ale);
   for (std::size_t k = 0; k < deposits.size(); ++k)
     deposit_option_table().validate(deposits[k], "deposit[" + std::to_string(k) + "].");
   if (options.geometry == CoordinateSystem::rz) {
-    // Not (yet) derived for the area-weighted rz scheme (docs/algorithm.md §19).
-    require(options.hourglass != Hourglass::subzonal && options.hourglass != Hourglass::subzonal_triangles,
-            "problem '" + name +
-                "': numerics.geometry = \"rz\" does not support the subzonal hourglass options; use "
-                "numerics.hourglass = \"gamma\" or \"flanagan_belytschko\"");
+    // Not derived for the area-weighted rz scheme (docs/algorithm.md §19).
     require(!(sources && sources->momentum),
             "problem '" + name + "': numerics.geometry = \"rz\" does not support a momentum source");
   }

@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "ale/ale_remap.hpp"
 #include "hydro/boundary.hpp"
 #include "hydro/kernels/geometry.hpp"
 #include "hydro/kernels/subzonal_pressure.hpp"
@@ -218,6 +219,7 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
       zone_mass[z] += mc;
       // rz: the axis points are massless (their acceleration is the area-weighted one).
       if (!(rz && m.x[m.corner_point[c]] == 0)) point_mass[m.corner_point[c]] += mc;
+      if (!ale_corner_mass.empty()) ale_corner_mass[c] = mc;
     }
     if (mat.strength) {
       if (setup.stress_xx) sxx[z] = setup.stress_xx(cx, cy);
@@ -316,6 +318,7 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
   apply_constraints(*this, vx, vy, 0.0);
   recompute_state();
   energy_initial = kinetic_energy() + internal_energy();
+  if (problem.ale.mode != AleMode::lagrangian) remap = make_ale_remap(*this);
   digest = setup_digest(*this);
 #ifdef __GLIBC__
   malloc_trim(0);  // hand the set-up's temporaries back to the OS before the long run

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "hydro/collective.hpp"
+#include "hydro/exact_sum.hpp"
 #include "hydro/physics_digest.hpp"
 #include "hydro/simulation_impl.hpp"
 #include "hydro/state_fields.hpp"
@@ -16,6 +18,7 @@ Simulation::Simulation(Problem problem) : impl_(std::make_unique<Impl>(std::move
   impl_->owner = this;
 }
 Simulation::~Simulation() = default;
+Simulation::Impl::~Impl() = default;
 // The observer is handed the owning Simulation: keep the back pointer right across moves.
 Simulation::Simulation(Simulation&& other) noexcept : impl_(std::move(other.impl_)) {
   if (impl_) impl_->owner = this;
@@ -139,6 +142,7 @@ EnergyAudit Simulation::energy() const {
   a.initial = impl_->energy_initial;
   a.boundary_work = impl_->boundary_work;
   a.source_work = impl_->source_work;
+  a.ale_fixup = impl_->ale_fixup;
   const double w = a.boundary_work + a.source_work;
   // docs/algorithm.md §11: normalise by max(E0, |W|, E), not E0 alone (E0 is 40x smaller than W on the piston).
   const double scale = std::max({std::abs(a.initial), std::abs(w), std::abs(a.total)});
@@ -147,12 +151,26 @@ EnergyAudit Simulation::energy() const {
 }
 
 std::array<double, 2> Simulation::momentum() const {
-  std::array<double, 2> m{0, 0};
-  for (std::size_t p = 0; p < impl_->vx.size(); ++p) {
-    m[0] += impl_->point_mass[p] * impl_->vx[p];
-    m[1] += impl_->point_mass[p] * impl_->vy[p];
+  // Exact sums over this rank's own points (docs/parallel.md, "Determinism").
+  const Impl& s = *impl_;
+  std::array<ExactSum, 2> sums;
+  for (std::size_t p = 0; p < s.vx.size(); ++p) {
+    if (!s.ghost_point.empty() && s.ghost_point[p]) continue;
+    sums[0].add(s.point_mass[p] * s.vx[p]);
+    sums[1].add(s.point_mass[p] * s.vy[p]);
   }
-  return m;
+  if (s.collective) s.collective->sum(sums);
+  return {sums[0].value(), sums[1].value()};
+}
+
+int Simulation::rank() const {
+  return impl_->collective ? impl_->collective->rank() : 0;
+}
+int Simulation::ranks() const {
+  return impl_->collective ? impl_->collective->ranks() : 1;
+}
+const Simulation* Simulation::gather() const {
+  return impl_->collective ? impl_->collective->gather(*impl_) : this;
 }
 
 void Simulation::set_remap(std::shared_ptr<Remap> remap) {
@@ -176,11 +194,12 @@ std::vector<Simulation::OutputField> Simulation::output_fields() const {
 // ---- checkpoints: the state table's checkpointed arrays in the binary format of
 // io/byte_stream.hpp, behind the physics digest (docs/output.md, "Checkpoints") ----
 namespace {
-constexpr std::string_view kBlobMagic = "STGCKPT2";  // the last character is the blob's version
+constexpr std::string_view kBlobMagic = "STGCKPT3";  // the last character is the blob's version
 }  // namespace
 
 std::string Simulation::checkpoint() const {
   const Impl& s = *impl_;
+  if (s.collective) throw Error("a distributed run has no checkpoints yet (docs/parallel.md)");
   io_detail::ByteWriter w;
   w.raw(kBlobMagic);
   write_digest(w, s.digest);
@@ -196,6 +215,7 @@ std::string Simulation::checkpoint() const {
   w.f64(s.energy_initial);
   w.f64(s.boundary_work);
   w.f64(s.source_work);
+  w.f64(s.ale_fixup);
   for (const StateField& f : state_fields()) {
     if (!(f.flags & kCheckpointed)) continue;
     w.bytes(f.name);
@@ -206,6 +226,7 @@ std::string Simulation::checkpoint() const {
 
 void Simulation::restore(std::string_view blob, const std::string& source) {
   Impl& s = *impl_;
+  if (s.collective) throw Error(source + ": a distributed run cannot restart from a checkpoint yet (docs/parallel.md)");
   io_detail::ByteReader r(blob, source);
   if (blob.size() < kBlobMagic.size() || !r.raw_equals(kBlobMagic)) {
     if (blob.substr(0, kBlobMagic.size() - 1) == kBlobMagic.substr(0, kBlobMagic.size() - 1))
@@ -229,7 +250,7 @@ void Simulation::restore(std::string_view blob, const std::string& source) {
   const long cycle = static_cast<long>(r.i64());
   const auto dt_zone = static_cast<Index>(r.i64());
   const bool have_previous_forces = r.u8() != 0;
-  const double energy_initial = r.f64(), boundary_work = r.f64(), source_work = r.f64();
+  const double energy_initial = r.f64(), boundary_work = r.f64(), source_work = r.f64(), ale_fixup = r.f64();
   // Two passes over the arrays: check every name and size, then copy, so that a bad blob
   // leaves the state untouched.
   io_detail::ByteReader arrays = r;
@@ -256,6 +277,7 @@ void Simulation::restore(std::string_view blob, const std::string& source) {
   s.energy_initial = energy_initial;
   s.boundary_work = boundary_work;
   s.source_work = source_work;
+  s.ale_fixup = ale_fixup;
   s.recompute_state();
   s.dt_next = dt_next;
   s.dt_zone = dt_zone;

@@ -80,6 +80,8 @@ const std::array kFields = {
     StateField{"corner_scratch", &I::corner_scratch, Entity::corner, Presence::momentum_source},
     // Constant subzonal masses (set-up; a remap carries them like the zone masses).
     StateField{"corner_mass", &I::corner_mass, Entity::corner, Presence::subzonal, kR},
+    // Median-mesh corner masses: constant in the Lagrangian phase, carried by the ALE remap.
+    StateField{"ale_corner_mass", &I::ale_corner_mass, Entity::corner, Presence::ale, kC | kR},
     StateField{"corner_area_mass", &I::corner_area_mass, Entity::corner, Presence::rz},
 };
 
@@ -111,6 +113,8 @@ bool present(const Simulation::Impl& s, Presence presence) {
     case Presence::subzonal:
       return s.problem.options.hourglass == Hourglass::subzonal ||
              s.problem.options.hourglass == Hourglass::subzonal_triangles;
+    case Presence::ale:
+      return s.problem.ale.mode != AleMode::lagrangian;
     case Presence::rz:
       return s.problem.options.geometry == CoordinateSystem::rz;
   }

@@ -23,6 +23,7 @@ enum class Presence {
   momentum_source,  // manufactured momentum source
   energy_source,    // manufactured energy source
   subzonal,         // numerics.hourglass = "subzonal" or "subzonal_triangles"
+  ale,              // ale.mode is not "lagrangian"
   rz,               // numerics.geometry = "rz"
 };
 

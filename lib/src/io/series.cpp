@@ -12,7 +12,7 @@ PvdWriter::PvdWriter(std::string pvd_path) : path_(std::move(pvd_path)) {}
 
 void PvdWriter::add(double time, const std::string& vtu_file) {
   entries_.emplace_back(time, vtu_file);
-  write();
+  if (!path_.empty()) write();  // no path: kept in memory only (a distributed run's other ranks)
 }
 
 void PvdWriter::mark_last_good_state(const std::string& why) {
@@ -20,7 +20,7 @@ void PvdWriter::mark_last_good_state(const std::string& why) {
   std::string note;
   for (const char c : why) note += (c == '-' && !note.empty() && note.back() == '-') ? ' ' : c;
   last_good_note_ = note;
-  write();
+  if (!path_.empty()) write();
 }
 
 void PvdWriter::write() const {
@@ -43,7 +43,7 @@ void PvdWriter::write() const {
 namespace {
 constexpr const char* history_header =
     "time,cycle,dt,kinetic,internal,boundary_work,source_work,total,relative_energy_error,momentum_x,"
-    "momentum_y\n";
+    "momentum_y,ale_fixup\n";
 }
 
 HistoryWriter::HistoryWriter(std::string csv_path) : path_(std::move(csv_path)), rows_(history_header) {}
@@ -55,7 +55,7 @@ void HistoryWriter::record(const Simulation& simulation) {
   rows_ += format_double(simulation.time());
   rows_ += ',' + std::to_string(simulation.cycle());
   for (const double value : {simulation.dt(), energy.kinetic, energy.internal, energy.boundary_work, energy.source_work,
-                             energy.total, energy.relative_error, momentum[0], momentum[1]}) {
+                             energy.total, energy.relative_error, momentum[0], momentum[1], energy.ale_fixup}) {
     rows_ += ',';
     rows_ += format_double(value);
   }
@@ -63,6 +63,7 @@ void HistoryWriter::record(const Simulation& simulation) {
 }
 
 void HistoryWriter::flush() const {
+  if (path_.empty()) return;  // kept in memory only (a distributed run's other ranks)
   write_file_atomically(path_, rows_);
 }
 

@@ -43,6 +43,7 @@ void write_summary(const std::string& path, const Simulation& simulation, const 
   text += "  \"loop_seconds\": " + json_number(summary.loop_seconds) + ",\n";
   text += "  \"zone_cycles_per_second\": " + json_number(rate) + ",\n";
   text += "  \"threads\": " + std::to_string(summary.threads) + ",\n";
+  text += "  \"ranks\": " + std::to_string(summary.ranks) + ",\n";
   text += "  \"status\": " + json_string(summary.status) + ",\n";
   // Only a stopped run has it: its last dump holds the last good state.
   if (summary.last_good_state) {
@@ -56,6 +57,7 @@ void write_summary(const std::string& path, const Simulation& simulation, const 
   text += "    \"internal\": " + json_number(energy.internal) + ",\n";
   text += "    \"boundary_work\": " + json_number(energy.boundary_work) + ",\n";
   text += "    \"source_work\": " + json_number(energy.source_work) + ",\n";
+  text += "    \"ale_fixup\": " + json_number(energy.ale_fixup) + ",\n";
   text += "    \"relative_error\": " + json_number(energy.relative_error) + "\n";
   text += "  },\n";
   text += "  \"momentum\": [" + json_number(momentum[0]) + ", " + json_number(momentum[1]) + "],\n";

@@ -128,6 +128,7 @@ std::string describe(const Scene& scene) {
   if (problem.sources) out << "manufactured source terms: on\n";
 
   out << "numerics\n" << echo_lines(numerics_option_table().echo(options));
+  if (problem.ale.mode != AleMode::lagrangian) out << "ale\n" << echo_lines(ale_option_table().echo(problem.ale));
   out << "output " << control.output_directory << ", reference " << (control.reference ? "yes" : "none") << "\n"
       << echo_lines(output_option_table().echo(control));
   return out.str();

@@ -99,8 +99,9 @@ SourceContext read_sources_section(Section& section, Problem& problem) {
 
 void read_verification_section(Section& section, const Problem& problem, const SourceContext& sources,
                                RunControl& control, VerificationSetup& setup) {
-  const std::string reference = section.choice("reference", {"shock_tube", "noh", "sedov", "saltzman", "taylor_green",
-                                                             "piston", "be_shell", "detonation", "accuracy"});
+  const std::string reference =
+      section.choice("reference", {"shock_tube", "noh", "sedov", "saltzman", "taylor_green", "piston", "be_shell",
+                                   "detonation", "accuracy", "taylor_bar"});
   setup.name = reference;
   if (reference == "shock_tube") {
     ShockTubeReference parameters;
@@ -149,6 +150,9 @@ void read_verification_section(Section& section, const Problem& problem, const S
     parameters.eos = material_eos<MieGruneisen>(section, material, "mie_gruneisen");
     if (!material.strength)
       section.fail("reference", "the piston needs material '" + material.name + "' with strength");
+    if (material.strength->hardening_modulus != 0)
+      section.fail("reference", "the piston's exact solution is perfectly plastic: material '" + material.name +
+                                    "' needs hardening_modulus = 0");
     parameters.shear_modulus = material.strength->shear_modulus;
     parameters.yield_stress = material.strength->yield_stress;
     parameters.initial_pressure = section.number("initial_pressure", parameters.initial_pressure);
@@ -164,6 +168,9 @@ void read_verification_section(Section& section, const Problem& problem, const S
     ShellParameters parameters;
     parameters.density = material_eos<MieGruneisen>(section, material, "mie_gruneisen").rho0;
     if (!material.strength) section.fail("reference", "the shell needs material '" + material.name + "' with strength");
+    if (material.strength->hardening_modulus != 0)
+      section.fail("reference", "the shell's exact solution is perfectly plastic: material '" + material.name +
+                                    "' needs hardening_modulus = 0");
     parameters.yield_stress = material.strength->yield_stress;
     parameters.inner_radius = positive(section, "inner_radius", parameters.inner_radius);
     parameters.outer_radius = positive(section, "outer_radius", parameters.outer_radius);
@@ -184,6 +191,8 @@ void read_verification_section(Section& section, const Problem& problem, const S
       section.fail("reference", failure.what());
     }
     setup.parameters = parameters;
+  } else if (reference == "taylor_bar") {
+    control.reference = taylor_bar_reference();  // diagnostics only: no parameters
   } else {
     if (!sources.accuracy)
       section.fail("reference",

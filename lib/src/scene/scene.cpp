@@ -371,7 +371,7 @@ Scene load_scene(const std::string& path, const std::vector<std::pair<std::strin
   Section root(path, document, "");
   // Reject unknown top-level keys before the (possibly slow) meshing.
   for (const char* key : {"scene", "time", "mesh", "material", "region", "boundary", "deposit", "numerics", "output",
-                          "sources", "verification"})
+                          "sources", "verification", "ale"})
     root.find(key);
   root.finish();
 
@@ -408,6 +408,10 @@ Scene load_scene(const std::string& path, const std::vector<std::pair<std::strin
   if (auto numerics = root.subtable("numerics")) {
     read_options(*numerics, numerics_option_table(), problem.options);
     numerics->finish();
+  }
+  if (auto ale = root.subtable("ale")) {
+    read_options(*ale, ale_option_table(), problem.ale);
+    ale->finish();
   }
   if (auto output = root.subtable("output")) {
     read_options(*output, output_option_table(), control);

@@ -164,7 +164,7 @@ std::int64_t finish_zones(const ZoneEndInput& input, const HydroOptions& o, cons
         if constexpr (Geometry::kRz)
           add_hoop_stress_rate(m.mu, hoop_strain_rate<N>(vh, bx, by, ax, ay, area_h, Geometry::template volume<N>(vh)),
                                dt, sn);
-        out.plastic_new[z] = in.plastic[z] + radial_return(m.yield, m.mu, sn);
+        out.plastic_new[z] = in.plastic[z] + radial_return(m.yield, m.hardening, in.plastic[z], m.mu, sn);
         out.sxx_new[z] = sn.xx, out.syy_new[z] = sn.yy, out.sxy_new[z] = sn.xy;
       }
       // Step 9: end geometry, density, EOS, time-step candidate.

@@ -15,6 +15,7 @@
 #include "hydro/kernels/strength.hpp"
 #include "hydro/kernels/subzonal_pressure.hpp"
 #include "hydro/kernels/viscosity_bulk.hpp"
+#include "hydro/kernels/viscosity_tensor.hpp"
 #include "hydro/kernels/zone_model.hpp"
 #include "hydro/kernels/zone_status.hpp"
 #include "stagger/problem.hpp"
@@ -35,7 +36,7 @@ struct ZoneForceInput {
   // its own corners before it overwrites them.
   const double *f_prev_x, *f_prev_y;
   const double *zone_mass, *e;
-  const double *sxx, *syy, *sxy;                        // S^n (strength)
+  const double *sxx, *syy, *sxy, *plastic;              // S^n, eps_p^n (strength)
   const double *grad_xx, *grad_xy, *grad_yx, *grad_yy;  // L(v^n) on x^n (strength)
   const double *burn, *lighting_time, *burn_length;     // (burn)
   const EnergySource* energy_source;                    // null: none
@@ -66,6 +67,7 @@ std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, con
   const Index* cp = in.corner_point;
   const double *vx = in.vx, *vy = in.vy, *x = in.x, *y = in.y;
   const bool bulk_q = o.viscosity == Viscosity::bulk;
+  const bool tensor_q = o.viscosity == Viscosity::tensor;
   const bool objective = o.stress_update == StressUpdate::objective;
   const bool subzonal_any = o.hourglass == Hourglass::subzonal || o.hourglass == Hourglass::subzonal_triangles;
   const bool subzonal = subzonal_any && o.hourglass_coefficient > 0;
@@ -133,10 +135,11 @@ std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, con
                                                   Geometry::template volume<N>(v0));
           sh = advance_stress(objective, m.mu, sh, sh, L, in.dt_half);
           add_hoop_stress_rate(m.mu, hoop, in.dt_half, sh);
-          radial_return(m.yield, m.mu, sh);
+          radial_return(m.yield, m.hardening, in.plastic[z], m.mu, sh);
         }
       } else {
-        sh = predict_stress(objective, m.mu, m.yield, {in.sxx[z], in.syy[z], in.sxy[z]}, L, in.dt_half);
+        sh = predict_stress(objective, m.mu, m.yield, m.hardening, in.plastic[z], {in.sxx[z], in.syy[z], in.sxy[z]}, L,
+                            in.dt_half);
       }
       out.sxx_half[z] = sh.xx, out.syy_half[z] = sh.yy, out.sxy_half[z] = sh.xy;
     }
@@ -174,6 +177,11 @@ std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, con
       out.c_half[z] = C;
     }
     stress_corner_forces(n, sh, pressure + qz, ax, ay, out.fx + b, out.fy + b);
+    // Or the tensor q (docs/algorithm.md §4.1), with the same coefficients and velocity.
+    if (tensor_q)
+      out.q[z] =
+          add_tensor_viscosity_forces(n, v.x, v.y, wx, wy, area, Geometry::template characteristic_length<N>(v, area),
+                                      rho, C, o.q1, o.q2, out.fx + b, out.fy + b);
     if constexpr (Geometry::kRz) {
       // Area-weighted: the planar corner masses for the point weights, the hoop body force.
       double ca[kMaxZoneVertices];
@@ -184,9 +192,17 @@ std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, con
     // Hourglass force with v* (quads).
     if (hg > 0 && n == 4) add_hourglass_forces(v.x, v.y, ax, ay, area, wx, wy, rho, C, hg, fb, out.fx + b, out.fy + b);
     // Subzonal pressures (any polygon; docs/algorithm.md §18).
-    if (subzonal)
-      add_subzonal_pressure_forces<N>(v, in.subzone_mass + b, mass, area, std::max(ps.c2, 0.0), o.hourglass_coefficient,
-                                      subzones, out.fx + b, out.fy + b);
+    if (subzonal) {
+      // rz: the planar subzone masses rho^0 A_k^0 against their sum (area-weighted, like the
+      // other forces; docs/algorithm.md §19).
+      double subzonal_mass = mass;
+      if constexpr (Geometry::kRz) {
+        subzonal_mass = 0;
+        for (int k = 0; k < n; ++k) subzonal_mass += in.subzone_mass[b + k];
+      }
+      add_subzonal_pressure_forces<N>(v, in.subzone_mass + b, subzonal_mass, area, std::max(ps.c2, 0.0),
+                                      o.hourglass_coefficient, subzones, out.fx + b, out.fy + b);
+    }
   }
   return failure;
 }

@@ -1,0 +1,259 @@
+// The built-in ALE phase (ale_remap.hpp; docs/ale.md): when to remap, the new mesh, the
+// remap of the state table's remapped fields, the kinetic-energy fix-up, the radial return.
+#include "ale/ale_remap.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "ale/remap.hpp"
+#include "hydro/boundary.hpp"
+#include "hydro/kernels/strength.hpp"
+#include "hydro/state_fields.hpp"
+#include "stagger/error.hpp"
+
+namespace stagger {
+
+namespace {
+
+// A point's displacement per remap sub-step stays below this fraction of its shortest edge,
+// so that each swept region lies within the zones next to its face.
+constexpr double kSubstepFraction = 0.4;
+constexpr int kMaxSubsteps = 64;
+
+class AleRemap final : public Remap {
+ public:
+  explicit AleRemap(Simulation::Impl& s);
+  bool remap(RemapState& state) override;
+
+ private:
+  bool due() const;
+  void new_positions();
+  void remap_once(const double* xo, const double* yo, const double* xn, const double* yn);
+  void fixup();
+
+  Simulation::Impl& s_;
+  std::vector<int> zone_material_;
+  Remapper remapper_;
+  std::vector<char> lagrangian_;      // eulerian mode: points that follow the material
+  std::vector<StateArray> specific_;  // the zone fields carried per unit mass
+  std::vector<double> xn_, yn_, xa_, ya_, xb_, yb_, kinetic_, zone_mass_old_, dE_;
+};
+
+std::vector<int> zone_materials(const Simulation::Impl& s) {
+  std::vector<int> material(s.mesh().num_zones(), 0);
+  for (const ZoneRange& r : s.ranges)
+    for (Index z = r.begin; z < r.end; ++z) material[z] = r.material;
+  return material;
+}
+
+AleRemap::AleRemap(Simulation::Impl& s)
+    : s_(s), zone_material_(zone_materials(s)), remapper_(s.mesh(), zone_material_) {
+  const Mesh& m = s.mesh();
+  const Index np = m.num_points(), nz = m.num_zones();
+  // Every field the state table marks remapped is carried: the masses and velocities by
+  // construction, every other zone field per unit mass.
+  for (const StateField& f : state_fields()) {
+    if (!(f.flags & kRemapped) || !present(s, f.presence)) continue;
+    const std::string name = f.name;
+    if (name == "vx" || name == "vy" || name == "point_mass" || name == "zone_mass" || name == "ale_corner_mass" ||
+        name == "corner_mass")
+      continue;
+    if (f.entity != Entity::zone)
+      throw Error(std::string("the ALE remap cannot carry the ") + f.name + " state array (not a zone field)");
+    specific_.push_back(f.member);
+  }
+  // Eulerian mode: points on material interfaces, on periodic, free, pressure or velocity
+  // boundaries follow the material; the others go back to their initial position.
+  lagrangian_.assign(np, 0);
+  for (Index p = 0; p < np; ++p) {
+    const Index first = m.corner_zone[m.point_corners[m.point_corner_begin[p]]];
+    for (Index k = m.point_corner_begin[p]; k < m.point_corner_begin[p + 1]; ++k)
+      if (zone_material_[m.corner_zone[m.point_corners[k]]] != zone_material_[first]) lagrangian_[p] = 1;
+  }
+  for (const BoundaryCondition& bc : s.problem.boundaries) {
+    if (bc.kind == BoundaryKind::wall) continue;
+    for (Index p : m.tags[m.tag_index(bc.tag)].points) lagrangian_[p] = 1;
+  }
+  for (auto* v : {&xn_, &yn_, &xa_, &ya_, &xb_, &yb_, &kinetic_}) v->assign(np, 0.0);
+  zone_mass_old_.assign(nz, 0.0);
+  dE_.assign(nz, 0.0);
+}
+
+bool AleRemap::due() const {
+  const AleOptions& o = s_.problem.ale;
+  if (o.mode == AleMode::eulerian) return true;
+  // By the cycle number alone, so that a restart remaps where the uninterrupted run does.
+  return s_.cycle % o.remap_every == 0;
+}
+
+void AleRemap::new_positions() {
+  const Mesh& m = s_.mesh();
+  const Index np = m.num_points();
+  // Eulerian (and, until the rezone lands, ALE): back to the initial mesh where allowed.
+  for (Index p = 0; p < np; ++p) {
+    xn_[p] = lagrangian_[p] ? s_.x[p] : m.x[p];
+    yn_[p] = lagrangian_[p] ? s_.y[p] : m.y[p];
+  }
+}
+
+void AleRemap::remap_once(const double* xo, const double* yo, const double* xn, const double* yn) {
+  RemapFields f;
+  f.zone_mass = s_.zone_mass.data();
+  f.corner_mass = s_.ale_corner_mass.data();
+  f.point_mass = s_.point_mass.data();
+  f.vx = s_.vx.data();
+  f.vy = s_.vy.data();
+  // The step swaps the current and new arrays: take the current buffers now.
+  f.specific.clear();
+  for (StateArray a : specific_) f.specific.push_back((s_.*a).data());
+  f.point_kinetic = kinetic_.data();
+  remapper_.remap(xo, yo, xn, yn, f, s_.problem.ale.limiter == AleLimiter::barth_jespersen);
+  fixup();
+}
+
+// The kinetic-energy fix-up (DeBar 1974; Vachal & Shashkov): the kinetic energy the remap
+// carried into each point's dual cell, minus the kinetic energy of its remapped (and
+// constrained) momentum, goes to the internal energy of the zones around the point in
+// proportion to their corner masses. Total energy is then conserved to round-off.
+void AleRemap::fixup() {
+  const Mesh& m = s_.mesh();
+  const Index np = m.num_points(), nz = m.num_zones();
+  // The constraints (walls, pistons, periodic groups) act on the remapped velocities; the
+  // kinetic energy they remove is part of the fix-up.
+  apply_constraints(s_, s_.vx, s_.vy, s_.t);
+  std::fill(dE_.begin(), dE_.end(), 0.0);
+  double moved = 0;
+  for (Index p = 0; p < np; ++p) {
+    const double u = s_.vx[p], w = s_.vy[p];
+    const double dk = kinetic_[p] - 0.5 * s_.point_mass[p] * (u * u + w * w);
+    if (dk == 0) continue;
+    moved += dk;
+    double mass = 0;
+    for (Index k = m.point_corner_begin[p]; k < m.point_corner_begin[p + 1]; ++k)
+      mass += s_.ale_corner_mass[m.point_corners[k]];
+    for (Index k = m.point_corner_begin[p]; k < m.point_corner_begin[p + 1]; ++k) {
+      const Index c = m.point_corners[k];
+      dE_[m.corner_zone[c]] += dk * (s_.ale_corner_mass[c] / mass);
+    }
+  }
+  // A zone may take a negative share only down to half of its internal energy above the
+  // floor of its equation of state (0 for an ideal gas); the rest of the deficit is taken
+  // from all zones in proportion to their energy above the floor. Nothing is clipped: the
+  // total moved is exactly what the kinetic energy lost.
+  double deficit = 0, capacity = 0;
+  for (const ZoneRange& r : s_.ranges) {
+    const Material& mat = s_.problem.materials[r.material];
+    const double floor = std::holds_alternative<IdealGas>(mat.eos) ? 0.0 : mat.min_energy;
+    for (Index z = r.begin; z < r.end; ++z) {
+      const double room = s_.zone_mass[z] * (s_.e[z] - floor);
+      if (dE_[z] < -0.5 * room) {
+        deficit += dE_[z] + 0.5 * room;
+        dE_[z] = -0.5 * room;
+      }
+      capacity += std::max(0.0, room + dE_[z]);
+    }
+  }
+  if (deficit < 0) {
+    if (!(capacity > -deficit) || !std::isfinite(capacity)) {
+      if (!std::isfinite(capacity)) {
+        // Materials without an energy floor take the deficit by mass.
+        double mass = 0;
+        for (Index z = 0; z < nz; ++z) mass += s_.zone_mass[z];
+        for (Index z = 0; z < nz; ++z) dE_[z] += deficit * (s_.zone_mass[z] / mass);
+      } else {
+        std::ostringstream msg;
+        msg << "cycle " << s_.cycle << ", t = " << s_.t << ": the ALE remap's kinetic-energy fix-up must take "
+            << -deficit << " from an internal energy of only " << capacity
+            << " above the equations of state's floors (docs/ale.md): remap more often or relax less";
+        throw Error(msg.str());
+      }
+    } else {
+      for (const ZoneRange& r : s_.ranges) {
+        const Material& mat = s_.problem.materials[r.material];
+        const double floor = std::holds_alternative<IdealGas>(mat.eos) ? 0.0 : mat.min_energy;
+        for (Index z = r.begin; z < r.end; ++z) {
+          const double room = std::max(0.0, s_.zone_mass[z] * (s_.e[z] - floor) + dE_[z]);
+          dE_[z] += deficit * (room / capacity);
+        }
+      }
+    }
+  }
+  for (Index z = 0; z < nz; ++z)
+    if (dE_[z] != 0) s_.e[z] = (s_.zone_mass[z] * s_.e[z] + dE_[z]) / s_.zone_mass[z];
+  s_.ale_fixup += moved;
+}
+
+bool AleRemap::remap(RemapState&) {
+  if (!due()) return false;
+  const Mesh& m = s_.mesh();
+  const Index np = m.num_points(), nz = m.num_zones();
+  new_positions();
+  bool moved = false;
+  for (Index p = 0; p < np && !moved; ++p) moved = xn_[p] != s_.x[p] || yn_[p] != s_.y[p];
+  if (!moved) return false;
+  std::copy(s_.zone_mass.begin(), s_.zone_mass.end(), zone_mass_old_.begin());
+  const int steps = remapper_.substeps(s_.x.data(), s_.y.data(), xn_.data(), yn_.data(), kSubstepFraction);
+  if (steps > kMaxSubsteps) {
+    std::ostringstream msg;
+    msg << "cycle " << s_.cycle << ", t = " << s_.t << ": the ALE rezone moved points by more than "
+        << kMaxSubsteps * kSubstepFraction << " of their shortest edge in one remap (docs/ale.md)";
+    throw Error(msg.str());
+  }
+  if (steps == 1) {
+    remap_once(s_.x.data(), s_.y.data(), xn_.data(), yn_.data());
+  } else {
+    // Sub-steps along the straight paths from the old to the new positions.
+    std::copy(s_.x.begin(), s_.x.end(), xa_.begin());
+    std::copy(s_.y.begin(), s_.y.end(), ya_.begin());
+    for (int j = 1; j <= steps; ++j) {
+      const double f = static_cast<double>(j) / steps;
+      for (Index p = 0; p < np; ++p) {
+        xb_[p] = j == steps ? xn_[p] : s_.x[p] + f * (xn_[p] - s_.x[p]);
+        yb_[p] = j == steps ? yn_[p] : s_.y[p] + f * (yn_[p] - s_.y[p]);
+      }
+      remap_once(xa_.data(), ya_.data(), xb_.data(), yb_.data());
+      std::swap(xa_, xb_);
+      std::swap(ya_, yb_);
+    }
+  }
+  std::copy(xn_.begin(), xn_.end(), s_.x.begin());
+  std::copy(yn_.begin(), yn_.end(), s_.y.begin());
+  // The remapped deviatoric stress may lie outside the yield surface (a mix of stresses
+  // inside a convex set stays inside it, but the linear reconstruction may step out):
+  // radial return, without plastic work (nothing deformed).
+  if (s_.any_strength) {
+    for (const ZoneRange& r : s_.ranges) {
+      const Material& mat = s_.problem.materials[r.material];
+      if (!mat.strength) continue;
+      for (Index z = r.begin; z < r.end; ++z) {
+        Deviator d{s_.sxx[z], s_.syy[z], s_.sxy[z]};
+        const double eps_p = s_.plastic.empty() ? 0.0 : s_.plastic[z];
+        radial_return(mat.strength->yield_stress, mat.strength->hardening_modulus, eps_p, mat.strength->shear_modulus,
+                      d);
+        s_.sxx[z] = d.xx, s_.syy[z] = d.yy, s_.sxy[z] = d.xy;
+      }
+    }
+  }
+  // Subzonal masses (the subzonal hourglass options) follow their zone's mass.
+  if (!s_.corner_mass.empty()) {
+    for (Index z = 0; z < nz; ++z) {
+      const double ratio = s_.zone_mass[z] / zone_mass_old_[z];
+      for (Index c = m.zone_corner_begin[z]; c < m.zone_corner_begin[z + 1]; ++c) s_.corner_mass[c] *= ratio;
+    }
+  }
+  // The lagged corner forces belong to the old mesh: the next predictor evaluates afresh.
+  s_.have_previous_forces = false;
+  return true;
+}
+
+}  // namespace
+
+std::shared_ptr<Remap> make_ale_remap(Simulation::Impl& s) {
+  return std::make_shared<AleRemap>(s);
+}
+
+}  // namespace stagger

@@ -1,0 +1,70 @@
+#pragma once
+// The conservative remap of the ALE phase (docs/ale.md, "Remap"): swept-face fluxes between
+// an old and a new position of the same mesh, piecewise-linear reconstruction from
+// least-squares gradients with a Barth-Jespersen limiter, zone quantities per unit mass, and
+// the momentum and kinetic energy of the points through the corners (subcells) so that the
+// corner masses stay consistent with the zone and point masses (Loubere & Shashkov 2005).
+#include <span>
+#include <vector>
+
+#include "stagger/mesh.hpp"
+
+namespace stagger {
+
+// The state a remap carries, as raw arrays of the mesh's sizes. Inputs on the old mesh are
+// replaced by the values on the new mesh.
+struct RemapFields {
+  double* zone_mass = nullptr;    // nzones
+  double* corner_mass = nullptr;  // ncorners: median-mesh corner masses, summing to the zone masses
+  double* point_mass = nullptr;   // npoints: the Lagrangian point masses (sums of corner masses)
+  double* vx = nullptr;           // npoints
+  double* vy = nullptr;
+  // Zone quantities per unit mass (specific internal energy, deviatoric stress, ...): each is
+  // remapped as the density of mass * value. A zone whose value is not finite (the lighting
+  // time of inert zones) keeps it and exchanges none of it.
+  std::vector<double*> specific;
+  // Output, npoints: the kinetic energy of each point's dual cell carried by the remap (the
+  // old 1/2 M v^2 plus the fluxes); minus 1/2 M' v'^2 it is what the kinetic-energy fix-up
+  // gives to the internal energy.
+  double* point_kinetic = nullptr;
+};
+
+// Swept-region remapper for one mesh topology: allocates its workspace once.
+class Remapper {
+ public:
+  // zone_material[z]: zones of different materials exchange nothing (their shared points
+  // must not move, so their faces sweep no area).
+  Remapper(const Mesh& mesh, std::span<const int> zone_material);
+
+  // Remaps `fields` from the positions (xo, yo) to (xn, yn). limiter: Barth-Jespersen on every
+  // gradient. Throws stagger::Error naming the zone or point if a mass would become
+  // non-positive (a displacement too large for a swept-face remap: see remap_substeps).
+  void remap(const double* xo, const double* yo, const double* xn, const double* yn, RemapFields& fields, bool limiter);
+
+  // Number of equal sub-steps that keeps every point's displacement below `fraction` of its
+  // shortest edge (on either mesh); 1 for small displacements.
+  int substeps(const double* xo, const double* yo, const double* xn, const double* yn, double fraction) const;
+
+  const Mesh& mesh() const { return mesh_; }
+
+ private:
+  void zone_gradients(const double* q, bool limiter, double* gx, double* gy, double* lo, double* hi);
+  void point_gradients(const double* q, bool limiter, double* gx, double* gy);
+
+  const Mesh& mesh_;
+  std::vector<Index> side_zone_;     // per corner: the zone across the corner's side, -1 if none
+  std::vector<Index> side_corner0_;  // per corner: that zone's corner at this corner's point
+  std::vector<Index> side_corner1_;  // ... and at the side's other point
+  std::vector<char> boundary_point_;
+  std::vector<Index> zone_nbr_begin_, zone_nbr_;    // zones sharing a point with z (not z)
+  std::vector<Index> point_nbr_begin_, point_nbr_;  // points sharing an edge with p
+  // Workspace.
+  const double *xo_ = nullptr, *yo_ = nullptr;  // old positions during remap()
+  std::vector<double> area_, cx_, cy_, rho_, grx_, gry_;
+  std::vector<double> zlsq_, plsq_;  // per zone / point: the 2x2 pseudo-inverse (xx, xy, yy)
+  std::vector<double> qgx_, qgy_, qmin_, qmax_, vgx_, vgy_, wgx_, wgy_;
+  std::vector<double> dm_zone_, dm_corner_, dm_point_, dpx_, dpy_, dke_, dq_;
+  std::vector<char> zone_touched_, point_touched_;
+};
+
+}  // namespace stagger

@@ -77,6 +77,11 @@ enum class Hourglass { gamma, flanagan_belytschko, subzonal, subzonal_triangles 
 /// incremental update S <- R S R^T (Hughes-Winget rotation).
 enum class StressUpdate { rate, objective };
 
+/// Coordinates of the 2D mesh: planar (x, y), per unit depth, or axisymmetric rz: x is the
+/// radius r >= 0, y the axial coordinate z, x = 0 the axis; masses, volumes and energies are
+/// then per radian (docs/algorithm.md §19).
+enum class CoordinateSystem { planar, rz };
+
 /// Numerical options (a scene's [numerics]). Ranges, units and meanings: numerics_option_table()
 /// in option_table.hpp, which the scene reader, validate() and docs/scenes.md share.
 struct HydroOptions {
@@ -101,6 +106,7 @@ struct HydroOptions {
   /// A zone whose vertex-average centre crosses a reflex vertex (the Sedov hot corner on a
   /// Cartesian mesh) trips it while its area is still positive; false checks zone areas only.
   bool check_corner_areas = true;
+  CoordinateSystem geometry = CoordinateSystem::planar;  ///< planar or axisymmetric (docs/algorithm.md §19)
 };
 
 /// How the mesh moves (a scene's [ale]; docs/ale.md): with the material (Lagrangian), rezoned

@@ -255,6 +255,11 @@ void setup_boundaries(Simulation::Impl& s) {
     }
   }
 
+  // rz: the axis x = 0 keeps v_r = 0 (a symmetry plane; docs/algorithm.md §19).
+  if (s.rz)
+    for (Index p = 0; p < mesh.num_points(); ++p)
+      if (mesh.x[p] == 0) add_candidate(candidates[p], {-1.0, 0.0, -1});
+
   for (auto& [point, list] : candidates) {
     PointConstraint c;
     c.point = point;

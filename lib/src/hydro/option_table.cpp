@@ -297,6 +297,9 @@ const OptionTable<HydroOptions>& numerics_option_table() {
           flag<&O::check_corner_areas>("check_corner_areas",
                                        "a non-positive median-mesh corner area counts as tangling; false: zone "
                                        "areas only (a chevron zone passes; no shipped scene needs it, §9)"),
+          choice<&O::geometry>("geometry", {"planar", "rz"},
+                               "planar (x, y) per unit depth, or axisymmetric: x = r >= 0, y = z, masses and "
+                               "energies per radian (§19)"),
       }};
   return table;
 }

@@ -79,6 +79,11 @@ struct Simulation::Impl {
   std::vector<double> corner_fx, corner_fy;
   std::vector<double> corner_mass;      // constant subzone masses (the subzonal hourglass options only)
   std::vector<double> ale_corner_mass;  // median-mesh corner masses, the remap's subcells (ALE only)
+  // Axisymmetric geometry (docs/algorithm.md §19): planar corner masses rho A_c of the force
+  // geometry, and the acceleration of the (massless) axis points with the last forces.
+  std::vector<double> corner_area_mass, axis_ax, axis_ay;
+  std::vector<Index> axis_points;  // points on x = 0 (rz)
+  bool rz = false;
   std::vector<EdgeContinuation> continuation;
 
   // Boundary conditions.
@@ -138,6 +143,7 @@ struct Simulation::Impl {
   void recompute_state();
   // Full force evaluation at the current state (first cycle, fresh predictor).
   void evaluate_forces_now();
+  void weight_rz_forces();
   double kinetic_energy() const;
   double internal_energy() const;
 };

@@ -37,6 +37,8 @@ const std::array kFields = {
     StateField{"ext_fy", &I::ext_fy, Entity::point, Presence::external},
     StateField{"src_fx", &I::src_fx, Entity::point, Presence::momentum_source},
     StateField{"src_fy", &I::src_fy, Entity::point, Presence::momentum_source},
+    StateField{"axis_ax", &I::axis_ax, Entity::point, Presence::rz, kC},
+    StateField{"axis_ay", &I::axis_ay, Entity::point, Presence::rz, kC},
     // Zones.
     StateField{"zone_mass", &I::zone_mass, Entity::zone, Presence::always, kR},
     StateField{"area", &I::area, Entity::zone, Presence::always},
@@ -80,6 +82,7 @@ const std::array kFields = {
     StateField{"corner_mass", &I::corner_mass, Entity::corner, Presence::subzonal, kR},
     // Median-mesh corner masses: constant in the Lagrangian phase, carried by the ALE remap.
     StateField{"ale_corner_mass", &I::ale_corner_mass, Entity::corner, Presence::ale, kC | kR},
+    StateField{"corner_area_mass", &I::corner_area_mass, Entity::corner, Presence::rz},
 };
 
 }  // namespace
@@ -112,6 +115,8 @@ bool present(const Simulation::Impl& s, Presence presence) {
              s.problem.options.hourglass == Hourglass::subzonal_triangles;
     case Presence::ale:
       return s.problem.ale.mode != AleMode::lagrangian;
+    case Presence::rz:
+      return s.problem.options.geometry == CoordinateSystem::rz;
   }
   return false;
 }

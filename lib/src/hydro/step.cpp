@@ -21,6 +21,7 @@
 #include "hydro/exact_sum.hpp"
 #include "hydro/kernels/geometry.hpp"
 #include "hydro/kernels/points.hpp"
+#include "hydro/kernels/rz.hpp"
 #include "hydro/kernels/viscosity_edge.hpp"
 #include "hydro/kernels/zone_end.hpp"
 #include "hydro/kernels/zone_forces.hpp"
@@ -33,8 +34,13 @@ namespace stagger {
 
 namespace {
 
-// The kernels' geometry policy: planar today (docs/architecture.md, "Geometry policy").
-using Geometry = PlanarGeometry;
+// The kernels' geometry policy (docs/architecture.md, "Geometry policy"): planar, or rz
+// (docs/algorithm.md §19), chosen once per loop; f gets a value of the policy type.
+using Geometry = PlanarGeometry;  // the geometry of diagnostics (tangled-zone search)
+template <class F>
+decltype(auto) with_geometry(bool rz, F&& f) {
+  return rz ? f(RzGeometry{}) : f(PlanarGeometry{});
+}
 
 // The per-material constants of the zone kernels.
 ZoneModel zone_model(const Material& material) {
@@ -163,9 +169,11 @@ void Simulation::Impl::recompute_state() {
         for (int k = 0; k < n; ++k) ux[k] = vx[corner_point[b + k]], uy[k] = vy[corner_point[b + k]];
         double dtz = 1e300;
         const double burn_z = any_burn ? burn[z] : 1.0;
-        const std::int64_t code =
-            quads ? end_state<4, Geometry>(z, v, ux, uy, zone_mass[z], e[z], burn_z, o, eos, m, out, dtz)
-                  : end_state<0, Geometry>(z, v, ux, uy, zone_mass[z], e[z], burn_z, o, eos, m, out, dtz);
+        const std::int64_t code = with_geometry(rz, [&](auto g) {
+          using G = decltype(g);
+          return quads ? end_state<4, G>(z, v, ux, uy, zone_mass[z], e[z], burn_z, o, eos, m, out, dtz)
+                       : end_state<0, G>(z, v, ux, uy, zone_mass[z], e[z], burn_z, o, eos, m, out, dtz);
+        });
         if (!r.ghost) failure = std::min(failure, code);
         if (dtz < local.dt && !r.ghost) local = {dtz, z};
       }
@@ -216,14 +224,17 @@ std::int64_t Simulation::Impl::zone_forces(const double* px, const double* py, d
                           dt_half,
                           t_eval,
                           data_or_null(corner_mass)};
-  const ZoneForceOutput out{corner_fx.data(),       corner_fy.data(),      q.data(),
-                            data_or_null(rho_half), data_or_null(c_half),  data_or_null(sxx_half),
-                            data_or_null(syy_half), data_or_null(sxy_half)};
+  const ZoneForceOutput out{corner_fx.data(),       corner_fy.data(),       q.data(),
+                            data_or_null(rho_half), data_or_null(c_half),   data_or_null(sxx_half),
+                            data_or_null(syy_half), data_or_null(sxy_half), data_or_null(corner_area_mass)};
   const HydroOptions& o = problem.options;
   std::int64_t failure = kNoFailure;
   for_each_range(*this, [&](const ZoneRange& r, const auto& eos, const ZoneModel& m) {
-    const std::int64_t code = all_quads ? force_zones<4, Geometry>(in, o, m, eos, r.begin, r.end, out)
-                                        : force_zones<0, Geometry>(in, o, m, eos, r.begin, r.end, out);
+    const std::int64_t code = with_geometry(rz, [&](auto g) {
+      using G = decltype(g);
+      return all_quads ? force_zones<4, G>(in, o, m, eos, r.begin, r.end, out)
+                       : force_zones<0, G>(in, o, m, eos, r.begin, r.end, out);
+    });
     if (!r.ghost) failure = std::min(failure, code);
   });
   return agreed(*this, failure);
@@ -256,6 +267,13 @@ void Simulation::Impl::evaluate_forces_now() {
   if (edge_viscosity) edge_forces(x.data(), y.data(), vx.data(), vy.data());
   // A distributed run: the outermost ghosts' edge viscosity lacks neighbours; their owners' forces replace it.
   if (collective) collective->exchange(*this);
+  if (rz) weight_rz_forces();
+}
+
+// rz: the area-weighted corner forces made true ones (docs/algorithm.md §19).
+void Simulation::Impl::weight_rz_forces() {
+  weight_rz_corner_forces(mesh().num_points(), point_corner_begin.data(), point_corners.data(), corner_area_mass.data(),
+                          point_mass.data(), corner_fx.data(), corner_fy.data(), axis_ax.data(), axis_ay.data());
 }
 
 // External point forces at the half step: applied pressures (boundary work) and momentum
@@ -264,6 +282,8 @@ void Simulation::Impl::external_forces(double t_half) {
   std::fill(ext_fx.begin(), ext_fx.end(), 0.0);
   std::fill(ext_fy.begin(), ext_fy.end(), 0.0);
   add_pressure_forces(*this, x_half, y_half, t_half, ext_fx, ext_fy);
+  if (rz)  // per radian: the planar force times the point's radius
+    for (Index p = 0; p < mesh().num_points(); ++p) ext_fx[p] *= x_half[p], ext_fy[p] *= x_half[p];
   if (!(problem.sources && problem.sources->momentum)) return;
   std::fill(src_fx.begin(), src_fx.end(), 0.0);
   std::fill(src_fy.begin(), src_fy.end(), 0.0);
@@ -309,6 +329,9 @@ void Simulation::Impl::predict_velocity(double dt, double t_half) {
     add_external_velocity(np, h, point_mass.data(), ext_fx.data(), ext_fy.data(), data_or_null(src_fx),
                           data_or_null(src_fy), vx_star.data(), vy_star.data());
   }
+  if (rz)
+    move_axis_points(axis_points.size(), axis_points.data(), h, axis_ax.data(), axis_ay.data(), vx.data(), vy.data(),
+                     vx_star.data(), vy_star.data());
   apply_constraints(*this, vx_star, vy_star, t_half);
 }
 
@@ -319,6 +342,9 @@ void Simulation::Impl::correct_velocity(double dt, double t_new) {
   correct_points(point_input(*this), mesh().num_points(), dt, external ? ext_fx.data() : nullptr,
                  external ? ext_fy.data() : nullptr, external ? data_or_null(src_fx) : nullptr,
                  external ? data_or_null(src_fy) : nullptr, vx_new.data(), vy_new.data());
+  if (rz)
+    move_axis_points(axis_points.size(), axis_points.data(), dt, axis_ax.data(), axis_ay.data(), vx.data(), vy.data(),
+                     vx_new.data(), vy_new.data());
   for (std::size_t i = 0; i < constrained.size(); ++i) {
     free_vx[i] = vx_new[constrained[i]];
     free_vy[i] = vy_new[constrained[i]];
@@ -363,8 +389,11 @@ std::int64_t Simulation::Impl::end_of_step(double dt, double t_new) {
   std::int64_t failure = kNoFailure;
   for_each_range(*this, [&](const ZoneRange& r, const auto& eos, const ZoneModel& m) {
     DtChoice& target = r.ghost ? ghost_choice : choice;
-    const std::int64_t code = all_quads ? finish_zones<4, Geometry>(in, o, m, eos, r.begin, r.end, out, target)
-                                        : finish_zones<0, Geometry>(in, o, m, eos, r.begin, r.end, out, target);
+    const std::int64_t code = with_geometry(rz, [&](auto g) {
+      using G = decltype(g);
+      return all_quads ? finish_zones<4, G>(in, o, m, eos, r.begin, r.end, out, target)
+                       : finish_zones<0, G>(in, o, m, eos, r.begin, r.end, out, target);
+    });
     if (!r.ghost) failure = std::min(failure, code);
   });
   failure = agreed(*this, failure);
@@ -417,6 +446,7 @@ bool Simulation::Impl::try_step(double dt) {
   }
   // 5. Edge viscosity forces, added to f^{n+1/2}.
   if (edge_viscosity) edge_forces(x_half.data(), y_half.data(), vx_star.data(), vy_star.data());
+  if (rz) weight_rz_forces();  // rz: true corner forces from the area-weighted ones
 
   // 6. P2: momentum v^{n+1} with the same corner forces, and the constraints.
   correct_velocity(dt, t_new);

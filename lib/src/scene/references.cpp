@@ -116,7 +116,9 @@ void read_verification_section(Section& section, const Problem& problem, const S
     parameters.gamma = gas_gamma(section, problem);
     parameters.density = positive(section, "density", parameters.density);
     parameters.speed = positive(section, "speed", parameters.speed);
-    control.reference = noh_reference(parameters.gamma, parameters.density, parameters.speed);
+    // A planar scene is the cylindrical implosion, an rz scene the spherical one.
+    control.reference = noh_reference(parameters.gamma, parameters.density, parameters.speed,
+                                      problem.options.geometry == CoordinateSystem::rz ? 3 : 2);
     setup.parameters = parameters;
   } else if (reference == "sedov") {
     SedovReference parameters;
@@ -127,7 +129,8 @@ void read_verification_section(Section& section, const Problem& problem, const S
       section.fail("energy", "missing (the scene has no [[deposit]])", "write energy = 0.244816");
     parameters.density = positive(section, "density", parameters.density);
     parameters.energy_quarter = positive(section, "energy", deposited);
-    control.reference = sedov_reference(parameters.gamma, parameters.density, parameters.energy_quarter);
+    control.reference = sedov_reference(parameters.gamma, parameters.density, parameters.energy_quarter,
+                                        problem.options.geometry == CoordinateSystem::rz ? 3 : 2);
     setup.parameters = parameters;
   } else if (reference == "saltzman") {
     SaltzmanReference parameters;

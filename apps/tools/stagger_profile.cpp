@@ -152,15 +152,18 @@ ReferenceSetup make_reference(const stagger::VerificationSetup& verification) {
     };
   } else if (const auto* noh_parameters = std::get_if<NohReference>(&parameters)) {
     const double gamma = noh_parameters->gamma;
-    const auto noh = std::make_shared<NohSolution>(gamma, noh_parameters->density, noh_parameters->speed, 2);
+    const auto noh =
+        std::make_shared<NohSolution>(gamma, noh_parameters->density, noh_parameters->speed, noh_parameters->nu);
     setup.exact = [noh, gamma](double x, double y, double t) {
       return radial_columns(noh->state(std::hypot(x, y), t), x, y, gamma);
     };
   } else if (const auto* sedov_parameters = std::get_if<SedovReference>(&parameters)) {
     const double gamma = sedov_parameters->gamma;
-    // The scene deposits a quarter of the full-plane energy (verify.hpp sedov_reference).
-    const auto sedov =
-        std::make_shared<SedovSolution>(gamma, 2, sedov_parameters->density, 4.0 * sedov_parameters->energy_quarter);
+    // The scene deposits a quarter of the full-plane energy, or in rz the energy per radian
+    // of z >= 0 (verify.hpp sedov_reference).
+    const double total = sedov_parameters->nu == 3 ? 4.0 * M_PI * sedov_parameters->energy_quarter
+                                                   : 4.0 * sedov_parameters->energy_quarter;
+    const auto sedov = std::make_shared<SedovSolution>(gamma, sedov_parameters->nu, sedov_parameters->density, total);
     setup.exact = [sedov, gamma](double x, double y, double t) {
       return radial_columns(sedov->state(std::hypot(x, y), t), x, y, gamma);
     };

@@ -18,10 +18,12 @@ struct ShockTubeReference {
 };
 struct NohReference {
   double gamma = 5.0 / 3.0, density = 1.0, speed = 1.0;
+  int nu = 2;  ///< 2 cylindrical (planar scene), 3 spherical (numerics.geometry = "rz")
 };
 struct SedovReference {
   double gamma = 1.4, density = 1.0;
-  double energy_quarter = 0.244816;  ///< the energy deposited in the quarter plane
+  double energy_quarter = 0.244816;  ///< the energy deposited in the quarter plane (rz: per radian in z >= 0)
+  int nu = 2;                        ///< 2 cylindrical (planar scene), 3 spherical (numerics.geometry = "rz")
 };
 struct SaltzmanReference {
   double piston_speed = 1.0, gamma = 5.0 / 3.0, density = 1.0;

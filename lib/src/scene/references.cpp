@@ -117,8 +117,8 @@ void read_verification_section(Section& section, const Problem& problem, const S
     parameters.density = positive(section, "density", parameters.density);
     parameters.speed = positive(section, "speed", parameters.speed);
     // A planar scene is the cylindrical implosion, an rz scene the spherical one.
-    control.reference = noh_reference(parameters.gamma, parameters.density, parameters.speed,
-                                      problem.options.geometry == CoordinateSystem::rz ? 3 : 2);
+    parameters.nu = problem.options.geometry == CoordinateSystem::rz ? 3 : 2;
+    control.reference = noh_reference(parameters.gamma, parameters.density, parameters.speed, parameters.nu);
     setup.parameters = parameters;
   } else if (reference == "sedov") {
     SedovReference parameters;
@@ -129,8 +129,8 @@ void read_verification_section(Section& section, const Problem& problem, const S
       section.fail("energy", "missing (the scene has no [[deposit]])", "write energy = 0.244816");
     parameters.density = positive(section, "density", parameters.density);
     parameters.energy_quarter = positive(section, "energy", deposited);
-    control.reference = sedov_reference(parameters.gamma, parameters.density, parameters.energy_quarter,
-                                        problem.options.geometry == CoordinateSystem::rz ? 3 : 2);
+    parameters.nu = problem.options.geometry == CoordinateSystem::rz ? 3 : 2;
+    control.reference = sedov_reference(parameters.gamma, parameters.density, parameters.energy_quarter, parameters.nu);
     setup.parameters = parameters;
   } else if (reference == "saltzman") {
     SaltzmanReference parameters;

@@ -1,0 +1,73 @@
+#!/usr/bin/env python3
+"""Runs the axisymmetric (rz) verification scene noh_rz with stagger-profile and plots it.
+
+    python3 scripts/verification/rz_figures.py [--build BUILD] [--work DIR] [--rings N ...]
+
+The exact values (exact_density) and the diagnostics (shock radius, plateau, asymmetry) come
+from the project's C++ code (NohSolution with nu = 3, noh_reference). Writes
+docs/figures/verif_noh_rz.png and prints one table row per run (docs/verification.md,
+"Axisymmetric (rz) problems").
+"""
+import argparse
+import csv
+import json
+import os
+import subprocess
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+
+
+def read_csv(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    return {k: [float(r[k]) for r in rows] for k in rows[0] if k != "region"}
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--build", default=os.path.join(ROOT, "build"))
+    parser.add_argument("--work", default="/tmp/stagger_rz_figures")
+    parser.add_argument("--rings", type=int, nargs="+", default=[50])
+    args = parser.parse_args()
+    profile = os.path.join(args.build, "bin", "stagger-profile")
+    scene = os.path.join(ROOT, "apps", "scenes", "noh_rz.toml")
+    fig, axes = plt.subplots(1, len(args.rings), figsize=(6 * len(args.rings), 4.5), squeeze=False)
+    print("| rings | cycles | plateau (64) | shock r (0.2) | asymmetry | audit |")
+    print("|---|---|---|---|---|---|")
+    for ax, rings in zip(axes[0], args.rings):
+        out = os.path.join(args.work, f"noh_rz_{rings}")
+        env = dict(os.environ, OMP_NUM_THREADS="1")
+        subprocess.run([profile, scene, "--out", out, "--set", f"mesh.n_r={rings}", "--times", "0.6"], check=True,
+                       env=env, stdout=subprocess.DEVNULL)
+        z = read_csv(os.path.join(out, "zones_0.6.csv"))
+        errors = {}
+        with open(os.path.join(out, "errors_0.6.csv")) as f:
+            for row in csv.DictReader(f):
+                errors[row["name"]] = float(row["value"])
+        with open(os.path.join(out, "summary.json")) as f:
+            summary = json.load(f)
+        print(f"| {rings} | {summary['cycles']} | {errors.get('plateau_density', float('nan')):.4g} | "
+              f"{errors.get('shock_radius', float('nan')):.4g} | {errors.get('asymmetry', float('nan')):.2g} | "
+              f"{abs(summary['energy']['relative_error']):.1e} |")
+        order = sorted(range(len(z["r"])), key=lambda k: z["r"][k])
+        ax.plot(z["r"], z["density"], ".", ms=2, label="zones (all angles)")
+        ax.plot([z["r"][k] for k in order], [z["exact_density"][k] for k in order], "k-", lw=1,
+                label="exact (NohSolution, nu = 3)")
+        ax.set_xlim(0, 0.6)
+        ax.set_xlabel("r = sqrt(x^2 + y^2)")
+        ax.set_ylabel("density")
+        ax.set_title(f"spherical Noh in rz, 25 angles x {rings} rings, t = 0.6")
+        ax.legend()
+    path = os.path.join(ROOT, "docs", "figures", "verif_noh_rz.png")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    print("wrote", path)
+
+
+if __name__ == "__main__":
+    main()

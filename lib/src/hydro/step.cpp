@@ -411,7 +411,7 @@ bool Simulation::Impl::try_step(double dt) {
 }
 
 // Remedies for a tangled step that the scene has not already taken (docs/algorithm.md §9).
-static std::string tangling_remedies(const HydroOptions& o) {
+static std::string tangling_remedies(const HydroOptions& o, AleMode ale_mode) {
   std::vector<std::string> tips;
   if (o.hourglass != Hourglass::subzonal_triangles)
     tips.push_back(
@@ -421,6 +421,7 @@ static std::string tangling_remedies(const HydroOptions& o) {
   if (o.cfl > 0.1) tips.push_back("a lower numerics.cfl");
   if (o.viscosity == Viscosity::bulk && o.q1 < 2) tips.push_back("a larger numerics.q1");
   tips.push_back("a finer or better-shaped mesh near the zone");
+  if (ale_mode == AleMode::lagrangian) tips.push_back("ale.mode = \"ale\" (rezone and remap, docs/ale.md)");
   std::string text = "try ";
   for (std::size_t i = 0; i < tips.size(); ++i) text += (i == 0 ? "" : i + 1 == tips.size() ? " or " : ", ") + tips[i];
   return text;
@@ -475,7 +476,7 @@ void Simulation::Impl::step(double t_stop) {
           << " after " << attempt << " retries";
       const Index tangled = find_tangled_zone(dt_taken);
       if (tangled >= 0) msg << "; " << describe_zone(*this, tangled);
-      msg << " (the mesh is folding there; " << tangling_remedies(o) << ")";
+      msg << " (the mesh is folding there; " << tangling_remedies(o, problem.ale.mode) << ")";
       throw Error(msg.str());
     }
     dt *= 0.5;

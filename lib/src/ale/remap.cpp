@@ -460,7 +460,37 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
   for (Index c = 0; c < nc; ++c) {
     if (dm_corner_[c] == 0) continue;
     f.corner_mass[c] += dm_corner_[c];
-    if (!(f.corner_mass[c] > 0)) fail_mass(m, "corner of zone", m.corner_zone[c], f.corner_mass[c]);
+  }
+  // Repair: a zone whose corner kept less than a hundredth of its share (subcell densities
+  // can drift apart where the mesh and the flow shear; a swept region then takes more than
+  // the corner holds) gets its corner masses reset to its new mass shared by new corner area.
+  // The zone mass stays; the points' masses change by the difference, their momentum does
+  // not, and the kinetic energy this changes is part of the fix-up.
+  for (Index z = 0; z < nz; ++z) {
+    const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
+    bool bad = false;
+    for (Index k = 0; k < n; ++k) bad = bad || !(f.corner_mass[b + k] > 0.01 * f.zone_mass[z] / n);
+    if (!bad) continue;
+    double gx = 0, gy = 0;
+    for (Index k = 0; k < n; ++k) gx += xn[m.corner_point[b + k]] / n, gy += yn[m.corner_point[b + k]] / n;
+    double areas[16], total = 0;
+    for (Index k = 0; k < n; ++k) {
+      const Index p = m.corner_point[b + k], pn = m.corner_point[b + (k + 1) % n],
+                  pp = m.corner_point[b + (k + n - 1) % n];
+      areas[k] = swept_quad(xn[p], yn[p], 0.5 * (xn[p] + xn[pn]), 0.5 * (yn[p] + yn[pn]), gx, gy,
+                            0.5 * (xn[p] + xn[pp]), 0.5 * (yn[p] + yn[pp]), 0.0, 0.0)
+                     .area;
+      total += areas[k];
+    }
+    for (Index k = 0; k < n; ++k) {
+      const double share = areas[k] > 0 && total > 0 ? f.zone_mass[z] * (areas[k] / total) : 0.0;
+      if (!(share > 0)) fail_mass(m, "corner of zone", z, share);
+      const Index p = m.corner_point[b + k];
+      dm_point_[p] += share - f.corner_mass[b + k];
+      point_touched_[p] = 1;
+      f.corner_mass[b + k] = share;
+    }
+    ++repaired_;
   }
   for (Index p = 0; p < np; ++p) {
     const double m0 = f.point_mass[p], u = f.vx[p], w = f.vy[p];

@@ -3,7 +3,8 @@
 # Quick when everything is already installed.
 set -euo pipefail
 packages=(cmake ninja-build g++ pkg-config libcgal-dev libgmsh-dev libvtk9-dev libgtest-dev
-          libtomlplusplus-dev libmuparser-dev libeigen3-dev python3 python3-matplotlib clang-format)
+          libtomlplusplus-dev libmuparser-dev libeigen3-dev python3 python3-matplotlib clang-format
+          libopenmpi-dev openmpi-bin libmetis-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -334,6 +334,11 @@ std::vector<RunSpec> stress_runs(const Context& context) {
       if (context.quick && scene == "sod") continue;
       runs.push_back(capped(make_spec(context, "stress", scene, "cfl=" + format_number(cfl), overrides)));
     }
+  // Problems a user brings on day one, with the default numerics to their scene's end: the
+  // blast in a walled box (Cartesian and gmsh) and the plane-strain copper Taylor bars.
+  if (!context.quick)
+    for (const std::string scene : {"blast_box", "blast_box_gmsh", "taylor_bar_200", "taylor_bar_400"})
+      runs.push_back(capped(make_spec(context, "stress", scene, "defaults", {{"output.dump_interval", "0"}})));
   // The long run: Sod 50x5 with reflecting walls, shocks bouncing to a very late time.
   const long long_cycles = context.quick ? 2000 : 100000;
   RunSpec long_run = make_spec(context, "stress", "sod", "long " + std::to_string(long_cycles) + " cycles",

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "arguments.hpp"
+#include "mpi_session.hpp"
 #include "stagger/error.hpp"
 #include "stagger/mesh.hpp"
 #include "stagger/meshgen.hpp"
@@ -150,7 +151,9 @@ void print_warnings(const Scene& scene) {
 // sides that do not match) are located at the scene file, the same for `run` and `check`.
 Simulation set_up(Problem problem, const std::string& scene_file) {
   try {
-    return Simulation(std::move(problem));
+    return distributed_simulation(std::move(problem));  // under mpirun: this rank's part
+  } catch (const CollectiveError& failure) {
+    throw CollectiveError(scene_file + ": set-up failed: " + failure.what());
   } catch (const Error& failure) {
     throw Error(scene_file + ": set-up failed: " + failure.what());
   }
@@ -184,27 +187,39 @@ int run_command(const std::vector<std::string>& args) {
     omp_set_num_threads(threads);
   }
   const bool quiet = arguments.flag("--quiet");
-  Scene scene = load_scene(scene_path, overrides_of(arguments));
-  RunControl control = scene.control;
-  if (arguments.has("--out")) control.output_directory = arguments.value("--out");
+  // Under mpirun every rank reads the scene; rank 0 reports (docs/parallel.md).
+  start_mpi_if_launched();
+  const bool root = mpi_state().rank == 0;
+  if (mpi_state().ranks > 1 && arguments.has("--restart"))
+    throw CollectiveError("--restart: a distributed run cannot restart from a checkpoint yet (docs/parallel.md)");
+  Scene scene;
+  RunControl control;
+  on_every_rank([&] {
+    scene = load_scene(scene_path, overrides_of(arguments));
+    control = scene.control;
+    if (arguments.has("--out")) control.output_directory = arguments.value("--out");
+    check_output_directory(control.output_directory);
+  });
   control.progress = !quiet;  // every 0.2 s on a terminal, a line every 10 s in a log
   for (const auto& note : scene.notes)
-    if (!quiet) std::cerr << "stagger: note: " << note << "\n";
-  print_warnings(scene);
+    if (!quiet && root) std::cerr << "stagger: note: " << note << "\n";
+  if (root) print_warnings(scene);
 
-  check_output_directory(control.output_directory);
   Simulation simulation = set_up(std::move(scene.problem), scene_path);
   const RunResult result =
       arguments.has("--restart") ? resume(simulation, control, arguments.value("--restart")) : run(simulation, control);
-  if (!quiet) {
+  const EnergyAudit energy = simulation.energy();  // collective in a distributed run
+  const Simulation* whole = simulation.gather();   // the whole state (rank 0)
+  if (!quiet && whole) {
+    const Simulation& simulation = *whole;
     const RunSummary& summary = result.summary;
-    const EnergyAudit energy = simulation.energy();
     const double zone_cycles =
         static_cast<double>(simulation.mesh().num_zones()) * static_cast<double>(simulation.cycle());
     std::cout << "stagger run: " << control.name << (result.completed ? " completed" : " STOPPED") << "\n";
     std::cout << "  cycles " << simulation.cycle() << ", t = " << number(simulation.time(), 10) << " of "
               << number(simulation.problem().t_end, 10) << ", last dt " << number(simulation.dt()) << "\n";
-    std::cout << "  zones " << simulation.mesh().num_zones() << ", threads " << summary.threads << ", wall "
+    std::cout << "  zones " << simulation.mesh().num_zones() << ", threads " << summary.threads
+              << (summary.ranks > 1 ? ", ranks " + std::to_string(summary.ranks) : std::string()) << ", wall "
               << number(summary.wall_seconds, 4) << " s, loop " << number(summary.loop_seconds, 4) << " s, "
               << number(summary.loop_seconds > 0 ? zone_cycles / summary.loop_seconds : 0.0, 4) << " zone-cycles/s\n";
     std::cout << "  energy: initial " << number(energy.initial, 10) << ", final " << number(energy.total, 10)
@@ -215,7 +230,7 @@ int run_command(const std::vector<std::string>& args) {
       std::cout << "  diagnostic " << name << " = " << number(value) << "\n";
     std::cout << "  output: " << control.output_directory << "\n";
   }
-  if (!result.completed) throw Error("run stopped: " + result.message);
+  if (!result.completed) throw CollectiveError("run stopped: " + result.message);  // every rank stops alike
   return 0;
 }
 

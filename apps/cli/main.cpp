@@ -10,6 +10,7 @@
 #include "arguments.hpp"
 #include "bench.hpp"
 #include "commands.hpp"
+#include "mpi_session.hpp"
 #include "stagger/error.hpp"
 
 namespace {
@@ -81,9 +82,18 @@ std::string one_line(std::string message) {
   return message;
 }
 
-int fail(const std::string& message) {
+// Under mpirun (docs/parallel.md): an error every rank throws alike is reported by rank 0
+// and every rank exits; any other error is reported where it happened and stops every rank.
+int fail(const std::string& message, bool collective = false) {
+  const auto& mpi = stagger::cli::mpi_state();
   std::cout.flush();
-  std::cerr << "stagger: error: " << one_line(message) << std::endl;
+  if (!mpi.active || mpi.rank == 0 || !collective) {
+    std::cerr << "stagger: error: "
+              << (mpi.active && mpi.rank != 0 ? "rank " + std::to_string(mpi.rank) + ": " : std::string())
+              << one_line(message) << std::endl;
+  }
+  if (mpi.active && mpi.ranks > 1 && !collective) stagger::cli::abort_mpi();
+  stagger::cli::finish_mpi();
   return 1;
 }
 
@@ -101,10 +111,16 @@ int main(int argc, char** argv) {
       return 0;
     }
     for (const auto& entry : commands())
-      if (args[0] == entry.name) return entry.command(std::vector<std::string>(args.begin() + 1, args.end()));
+      if (args[0] == entry.name) {
+        const int status = entry.command(std::vector<std::string>(args.begin() + 1, args.end()));
+        stagger::cli::finish_mpi();
+        return status;
+      }
     std::string names;
     for (const auto& entry : commands()) names += (names.empty() ? "" : ", ") + std::string(entry.name);
     return fail("unknown command '" + args[0] + "'; commands: " + names + " (see 'stagger --help')");
+  } catch (const stagger::cli::CollectiveError& error) {
+    return fail(error.what(), true);
   } catch (const stagger::Error& error) {
     return fail(error.what());
   } catch (const stagger::cli::UsageError& error) {

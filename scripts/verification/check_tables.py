@@ -3,7 +3,7 @@
 
     python3 scripts/verification/check_tables.py [--build BUILD] [--work DIR] [--update]
 
-"Cheap" means the runs take seconds: Sod (100, 200, 400 x 5), the four Saltzman variants and the
+"Cheap" means the runs take seconds: Sod (100, 200, 400 x 5), the five Saltzman variants and the
 Taylor-Green ladder (16^2 to 128^2), about 20 s on one core. Each table in docs/ that this script
 owns sits between
 
@@ -58,8 +58,7 @@ def taylor_green_block(runs):
 # block name -> (runs it needs, function of the loaded runs)
 BLOCKS = {
     "sod": (["sod_100", "sod_200", "sod_400", "sod_200_edge"], sod_block),
-    "saltzman": (["saltzman_edge_fb", "saltzman_edge_gamma", "saltzman_edge_none", "saltzman_bulk_fb"],
-                 saltzman_block),
+    "saltzman": (mf.SALTZMAN_RUNS, saltzman_block),
     "taylor-green": ([f"smooth_{n}" for n in (16, 32, 64, 128)], taylor_green_block),
 }
 

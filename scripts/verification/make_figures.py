@@ -46,23 +46,28 @@ def add(name, scene, sets=(), times=None, history_every=1):
 for r in (1, 2, 4):
     add(f"sod_{100 * r}", "sod", [f"mesh.refine={r}"], [0.1, 0.2])
 add("sod_200_edge", "sod", ["mesh.refine=2", "numerics.viscosity=edge"], [0.2])
-# The Noh scenes turn check_corner_areas off, as Sedov does (docs/algorithm.md section 9).
+# Every check on (the scenes' own numerics: the Cartesian Noh, Sedov and Saltzman the default
+# tensor q with subzonal triangles, the polar Noh the edge viscosity; docs/verification.md).
+EDGE_TRIANGLES_1 = ["numerics.viscosity=edge", "numerics.hourglass_coefficient=1"]  # the old noh.toml
 add("noh_50", "noh", [], [0.2, 0.4, 0.6])
-add("noh_50_bulk", "noh", ["numerics.viscosity=bulk"], [0.6])
+add("noh_50_edge", "noh", EDGE_TRIANGLES_1, [0.6])
 add("noh_100", "noh", ["mesh.refine=2"], [0.6])
-add("noh_50_corner_check", "noh", ["numerics.check_corner_areas=true"], [0.6])
+add("noh_100_edge", "noh", ["mesh.refine=2"] + EDGE_TRIANGLES_1, [0.6])
 add("noh_polar_50", "noh_polar", [], [0.2, 0.4, 0.6])
 add("noh_polar_100", "noh_polar", ["mesh.refine=2"], [0.6])
 add("noh_polar_50_bulk", "noh_polar", ["numerics.viscosity=bulk"], [0.6])
+add("noh_polar_50_tensor", "noh_polar", ["numerics.viscosity=tensor"], [0.6])
 add("noh_polar_50_nolimiter", "noh_polar", ["numerics.edge_limiter=false"], [0.6])
-add("noh_polar_50_corner_check", "noh_polar", ["numerics.check_corner_areas=true"], [0.6])
 for n, r in ((30, 1), (60, 2), (120, 4)):
-    add(f"sedov_{n}_edge", "sedov", [f"mesh.refine={r}"], [0.5, 1.0])
+    add(f"sedov_{n}_tensor", "sedov", [f"mesh.refine={r}"], [0.5, 1.0])
     add(f"sedov_{n}_bulk", "sedov", [f"mesh.refine={r}", "numerics.viscosity=bulk"], [1.0])
-add("saltzman_edge_fb", "saltzman", [], [0.2, 0.4, 0.6])
-add("saltzman_bulk_fb", "saltzman", ["numerics.viscosity=bulk"], [0.6])
-add("saltzman_edge_gamma", "saltzman", ["numerics.hourglass=gamma"], [0.6])
-add("saltzman_edge_none", "saltzman", ["numerics.hourglass_coefficient=0"], [0.6])
+add("saltzman_default", "saltzman", [], [0.2, 0.4, 0.6])
+EDGE = ["numerics.viscosity=edge"]
+FB = ["numerics.hourglass=flanagan_belytschko", "numerics.hourglass_coefficient=1"]
+add("saltzman_edge_fb", "saltzman", EDGE + FB, [0.2, 0.4, 0.6])
+add("saltzman_bulk_fb", "saltzman", ["numerics.viscosity=bulk"] + FB, [0.6])
+add("saltzman_edge_gamma", "saltzman", EDGE + ["numerics.hourglass=gamma", "numerics.hourglass_coefficient=1"], [0.6])
+add("saltzman_edge_none", "saltzman", EDGE + ["numerics.hourglass_coefficient=0"], [0.6])
 for n in (16, 32, 64, 128):
     add(f"smooth_{n}", "smooth", [f"mesh.nx={n}", f"mesh.ny={n}"], [0.5])
 for n in (20, 40, 80, 160):
@@ -254,11 +259,13 @@ def radial_scatter(ax, z, field, label, style=".", **kw):
 
 def fig_noh(runs, out):
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.5), sharey=True)
-    for ax, (name, title) in zip(axes, (("noh_50", "Cartesian 50x50"), ("noh_polar_50", "polar 25 x 50 rings"))):
+    panels = (("noh_50", "Cartesian 50x50", "default: tensor q + triangles 2", "noh_50_edge", "edge q + triangles 1"),
+              ("noh_polar_50", "polar 25 x 50 rings", "edge viscosity + gamma 0.1", "noh_polar_50_bulk", "bulk q"))
+    for ax, (name, title, label, other, other_label) in zip(axes, panels):
         z = runs[name].zones(0.6)
-        radial_scatter(ax, z, "density", "edge viscosity (every zone)", "C0.")
-        zb = runs[name + "_bulk"].zones()
-        radial_scatter(ax, zb, "density", f"bulk q (t = {runs[name + '_bulk'].time():.3g})", "C3.", alpha=0.5)
+        radial_scatter(ax, z, "density", label + " (every zone)", "C0.")
+        zb = runs[other].zones()
+        radial_scatter(ax, zb, "density", f"{other_label} (t = {runs[other].time():.3g})", "C3.", alpha=0.5)
         zs = sorted_by(z, "r")
         ax.plot(zs["r"], zs["exact_density"], "k-", lw=1, label="exact (NohSolution)")
         ax.set_xlim(0, 0.5)
@@ -289,10 +296,13 @@ def equivalent_shock_radius(z, threshold=10.0):
     return math.sqrt(4.0 * area / math.pi)
 
 
+NOH_RUNS = ["noh_50", "noh_100", "noh_50_edge", "noh_100_edge", "noh_polar_50", "noh_polar_100", "noh_polar_50_bulk",
+            "noh_polar_50_tensor", "noh_polar_50_nolimiter"]
+
+
 def noh_tables(runs):
     rows = []
-    for name in ("noh_50", "noh_100", "noh_50_bulk", "noh_50_corner_check", "noh_polar_50", "noh_polar_100",
-                 "noh_polar_50_bulk", "noh_polar_50_nolimiter", "noh_polar_50_corner_check"):
+    for name in NOH_RUNS:
         r = runs[name]
         e = r.errors()
         rows.append([name, r.time(), r.cycles(), e.get("plateau_density"), e.get("shock_radius"),
@@ -305,13 +315,13 @@ def noh_tables(runs):
 
 def fig_sedov(runs, out):
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.5), sharey=True)
-    for ax, kind in zip(axes, ("edge", "bulk")):
+    for ax, kind in zip(axes, ("tensor", "bulk")):
         for n, style in ((30, "C2."), (60, "C1."), (120, "C0.")):
             z = runs[f"sedov_{n}_{kind}"].zones(1.0)
             ax.plot(z["r"], z["density"], style, ms=1.5, label=f"{n}x{n}")
-        z = sorted_by(runs["sedov_120_edge"].zones(1.0), "r")
+        z = sorted_by(runs["sedov_120_tensor"].zones(1.0), "r")
         ax.plot(z["r"], z["exact_density"], "k-", lw=1, label="exact (SedovSolution)")
-        ax.set_title(f"Sedov, {kind} viscosity, t = 1")
+        ax.set_title(f"Sedov, {kind} q + subzonal triangles 2, t = 1")
         ax.set_xlabel("r (zone centre)")
         ax.set_xlim(0, 1.2)
     axes[0].set_ylabel("density")
@@ -319,13 +329,13 @@ def fig_sedov(runs, out):
     out.append(save(fig, "verif_sedov_density.png"))
 
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.5))
-    z = runs["sedov_120_edge"].zones(1.0)
+    z = runs["sedov_120_tensor"].zones(1.0)
     zs = sorted_by(z, "r")
-    axes[0].plot(z["r"], z["pressure"], "C0.", ms=1.5, label="120x120 edge")
+    axes[0].plot(z["r"], z["pressure"], "C0.", ms=1.5, label="120x120 tensor")
     axes[0].plot(zs["r"], zs["exact_pressure"], "k-", lw=1, label="exact")
     axes[0].set_ylabel("pressure")
     vr = (z["velocity_x"] * z["x"] + z["velocity_y"] * z["y"]) / np.maximum(z["r"], 1e-300)
-    axes[1].plot(z["r"], vr, "C0.", ms=1.5, label="120x120 edge")
+    axes[1].plot(z["r"], vr, "C0.", ms=1.5, label="120x120 tensor")
     exact_vr = (zs["exact_velocity_x"] * zs["x"] + zs["exact_velocity_y"] * zs["y"]) / np.maximum(zs["r"], 1e-300)
     axes[1].plot(zs["r"], exact_vr, "k-", lw=1, label="exact")
     axes[1].set_ylabel("radial velocity")
@@ -333,13 +343,13 @@ def fig_sedov(runs, out):
         ax.set_xlabel("r")
         ax.legend()
         ax.set_xlim(0, 1.2)
-    fig.suptitle("Sedov 120x120, edge viscosity, t = 1")
+    fig.suptitle("Sedov 120x120, default numerics (tensor q + subzonal triangles 2), t = 1")
     out.append(save(fig, "verif_sedov_pressure_velocity.png"))
 
 
 def sedov_tables(runs):
     rows = []
-    for kind in ("edge", "bulk"):
+    for kind in ("tensor", "bulk"):
         for n in (30, 60, 120):
             r = runs[f"sedov_{n}_{kind}"]
             e = r.errors(1.0)
@@ -352,17 +362,17 @@ def sedov_tables(runs):
 
 def fig_saltzman(runs, out):
     fig, axes = plt.subplots(2, 1, figsize=(11, 7))
-    r = runs["saltzman_edge_fb"]
+    r = runs["saltzman_default"]
     for t, style in ((0.2, "C2."), (0.4, "C1."), (0.6, "C0.")):
         z = r.zones(t)
         axes[0].plot(z["x"], z["density"], style, ms=2, label=f"t = {t}")
         zs = sorted_by(z, "x")
         axes[0].plot(zs["x"], zs["exact_density"], "k-", lw=0.8)
     axes[0].set_ylabel("density")
-    axes[0].set_title("Saltzman piston (edge viscosity, Flanagan-Belytschko Q = 1): every zone; black: exact")
+    axes[0].set_title("Saltzman piston (default: tensor q + subzonal triangles 2): every zone; black: exact")
     axes[0].legend()
-    for name, style in (("saltzman_edge_fb", "C0-"), ("saltzman_edge_gamma", "C1-"), ("saltzman_edge_none", "C3-"),
-                        ("saltzman_bulk_fb", "C2-")):
+    for name, style in (("saltzman_default", "C0-"), ("saltzman_edge_fb", "C4-"), ("saltzman_edge_gamma", "C1-"),
+                        ("saltzman_edge_none", "C3-"), ("saltzman_bulk_fb", "C2-")):
         z = runs[name].zones()
         # Inner rows only (the generator numbers zones row by row, 100 per row): the rows at
         # the walls are 15-20 % off in every variant (mesh skew), which hides the differences.
@@ -383,18 +393,21 @@ def fig_saltzman(runs, out):
 
     # The mesh at the last time: zones drawn as their centres coloured by density.
     fig, ax = plt.subplots(figsize=(11, 2.2))
-    z = runs["saltzman_edge_fb"].zones()
+    z = runs["saltzman_default"].zones()
     sc = ax.scatter(z["x"], z["y"], c=z["density"], s=8, cmap="viridis", vmin=0, vmax=5)
     ax.set_aspect("equal")
-    ax.set_title("Saltzman, edge + FB, t = 0.6: density at zone centres")
+    ax.set_title("Saltzman, default numerics (tensor q + subzonal triangles 2), t = 0.6: density at zone centres")
     fig.colorbar(sc, ax=ax)
     out.append(save(fig, "verif_saltzman_map.png"))
+
+
+SALTZMAN_RUNS = ["saltzman_default", "saltzman_edge_fb", "saltzman_edge_gamma", "saltzman_edge_none", "saltzman_bulk_fb"]
 
 
 def saltzman_tables(runs, roundoff=None):
     roundoff = roundoff or fmt
     rows = []
-    for name in ("saltzman_edge_fb", "saltzman_edge_gamma", "saltzman_edge_none", "saltzman_bulk_fb"):
+    for name in SALTZMAN_RUNS:
         r = runs[name]
         e = r.errors()
         z = r.zones()
@@ -673,11 +686,10 @@ def read_results(path):
 
 SECTIONS = [
     ("Sod", ["sod_100", "sod_200", "sod_400", "sod_200_edge"], fig_sod, sod_tables),
-    ("Noh", ["noh_50", "noh_100", "noh_50_bulk", "noh_50_corner_check", "noh_polar_50", "noh_polar_100",
-             "noh_polar_50_bulk", "noh_polar_50_nolimiter", "noh_polar_50_corner_check"], fig_noh,
+    ("Noh", NOH_RUNS, fig_noh,
      noh_tables),
-    ("Sedov", [f"sedov_{n}_{k}" for n in (30, 60, 120) for k in ("edge", "bulk")], fig_sedov, sedov_tables),
-    ("Saltzman", ["saltzman_edge_fb", "saltzman_bulk_fb", "saltzman_edge_gamma", "saltzman_edge_none"],
+    ("Sedov", [f"sedov_{n}_{k}" for n in (30, 60, 120) for k in ("tensor", "bulk")], fig_sedov, sedov_tables),
+    ("Saltzman", SALTZMAN_RUNS,
      fig_saltzman, saltzman_tables),
     ("Taylor-Green", [f"smooth_{n}" for n in (16, 32, 64, 128)], fig_smooth, smooth_tables),
     ("Accuracy", [f"accuracy_{n}" for n in (20, 40, 80, 160)], fig_accuracy, accuracy_tables),
@@ -702,7 +714,7 @@ def main():
     names = [n for n in RUNS if not args.only or any(n.startswith(o) for o in args.only)]
     if not args.plot_only:
         # Longest first, so that parallel jobs finish together.
-        heavy = {"be_shell_80x64": 0, "noh_100": 1, "noh_polar_100": 2, "sedov_120_edge": 3, "sedov_120_bulk": 4,
+        heavy = {"be_shell_80x64": 0, "noh_100": 1, "noh_polar_100": 2, "sedov_120_tensor": 3, "sedov_120_bulk": 4,
                  "noh_polar_50_bulk": 5, "piston_1000": 6}
         names.sort(key=lambda n: heavy.get(n, 10))
         with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:

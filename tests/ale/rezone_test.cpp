@@ -390,6 +390,36 @@ TEST(Rezone, UnstructuredGmshMeshWithTriangles) {
   }
 }
 
+TEST(Rezone, GmshMeshAtRest) {
+  // An unstructured mesh that does not move: reference_jacobian leaves it where it is;
+  // Winslow moves it toward its own fixed point, keeping every zone convex, and the moves
+  // shrink from one rezone to the next.
+  meshgen::GeoOptions go;
+  go.parameters = {{"n", 10}};
+  const Mesh mesh = build_mesh(meshgen::read_geo(std::string(STAGGER_SOURCE_DIR) + "/geometries/blast_box.geo", go));
+  const RezoneConstraints rc = make_rezone_constraints(mesh, {});
+  for (const RezoneMethod m : {RezoneMethod::winslow, RezoneMethod::reference_jacobian}) {
+    RezoneOptions o;
+    o.method = m;
+    Positions pos{mesh.x, mesh.y};
+    std::vector<double> xn(mesh.num_points()), yn(mesh.num_points());
+    RezoneWorkspace ws;
+    std::vector<double> moves;
+    for (int call = 0; call < 40; ++call) {
+      moves.push_back(rezone(mesh, rc, o, pos.x, pos.y, mesh.x, mesh.y, xn, yn, ws).max_displacement);
+      pos.x = xn;
+      pos.y = yn;
+    }
+    const QualitySummary q = mesh_quality_summary(mesh, QualityMeasure::scaled_jacobian, pos.x, pos.y, {}, {});
+    EXPECT_GT(q.worst, 0.4);
+    if (m == RezoneMethod::reference_jacobian) {
+      EXPECT_LE(*std::max_element(moves.begin(), moves.end()), 1e-12);
+    } else {
+      EXPECT_LT(moves.back(), 0.1 * moves.front());
+    }
+  }
+}
+
 TEST(Rezone, PolygonSoupWithHexagonsAndTriangles) {
   // Rows of hexagons (two quads merged), quads, and triangles (quads split) in one mesh.
   const int n = 8;
@@ -555,6 +585,8 @@ TEST(Rezone, BadOptionsAndSizesAreOneClearError) {
   EXPECT_NE(message(o, xn).find("max_move"), std::string::npos);
   std::vector<double> short_x(3);
   EXPECT_NE(message({}, short_x).find("x_new"), std::string::npos);
+  std::vector<double> x_lag = mesh.x;
+  EXPECT_THROW(rezone(mesh, rc, {}, x_lag, mesh.y, mesh.x, mesh.y, x_lag, yn, ws), Error);  // in place
 }
 
 }  // namespace

@@ -3,6 +3,12 @@
 file(GLOB api_public_headers CONFIGURE_DEPENDS
   ${PROJECT_SOURCE_DIR}/lib/include/stagger/*.hpp
   ${PROJECT_SOURCE_DIR}/meshgen/include/stagger/*.hpp)
+# stagger/parallel.hpp includes <mpi.h>: it is part of the MPI build only (docs/parallel.md).
+if(STAGGER_MPI)
+  target_link_libraries(test_api PRIVATE MPI::MPI_CXX)
+else()
+  list(FILTER api_public_headers EXCLUDE REGEX "/parallel\\.hpp$")
+endif()
 foreach(header ${api_public_headers})
   get_filename_component(header_name ${header} NAME_WE)
   set(generated ${CMAKE_CURRENT_BINARY_DIR}/api_headers/alone_${header_name}.cpp)

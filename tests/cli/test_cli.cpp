@@ -260,26 +260,16 @@ TEST_F(Cli, MeshOutputIsAtomicAndAFullDiskIsAnError) {
   }
 }
 
-// The shipped scenes give no warning, except the polar Noh scene, which still turns the
-// corner-area check off (docs/algorithm.md §9): it gets exactly that warning.
+// The shipped scenes give no warning: none turns a check off (docs/algorithm.md §9).
 TEST_F(Cli, ShippedScenesGiveNoWarnings) {
   const fs::path scenes = fs::path(STAGGER_SOURCE_DIR) / "apps" / "scenes";
-  const std::set<std::string> weakened = {"noh_polar.toml"};
   int count = 0;
   for (const auto& entry : fs::directory_iterator(scenes)) {
     if (entry.path().extension() != ".toml") continue;
     ++count;
     const Result result = stagger("check " + entry.path().string() + " --out " + (directory_ / "o").string());
     EXPECT_EQ(result.status, 0) << entry.path() << result.err;
-    std::string err = result.err;
-    if (weakened.count(entry.path().filename().string())) {
-      const auto at = err.find("warning: ");
-      ASSERT_NE(at, std::string::npos) << entry.path() << ": no warning for check_corner_areas = false";
-      const auto end = err.find('\n', at);
-      EXPECT_NE(err.substr(at, end - at).find("numerics.check_corner_areas"), std::string::npos) << err;
-      err.erase(at, end - at);
-    }
-    EXPECT_EQ(err.find("warning"), std::string::npos) << entry.path() << ": " << result.err;
+    EXPECT_EQ(result.err.find("warning"), std::string::npos) << entry.path() << ": " << result.err;
   }
   EXPECT_GE(count, 10);
 }

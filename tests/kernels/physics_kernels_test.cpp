@@ -94,7 +94,7 @@ TEST(StrengthKernels, RadialReturnLandsOnTheYieldSurface) {
   const double seq = von_mises(trial);
   ASSERT_GT(seq, Y);
   Deviator s = trial;
-  const double dp = radial_return(Y, mu, s);
+  const double dp = radial_return(Y, 0.0, 0.0, mu, s);
   EXPECT_NEAR(von_mises(s), Y, 1e-15 * Y * 4);
   // Radial: the same direction, scaled by Y / sigma_eq.
   EXPECT_NEAR(s.xx, trial.xx * Y / seq, 1e-6);
@@ -104,10 +104,37 @@ TEST(StrengthKernels, RadialReturnLandsOnTheYieldSurface) {
   // Inside the surface: untouched, no plastic strain.
   Deviator inside{0.5 * trial.xx * Y / seq, 0.5 * trial.yy * Y / seq, 0.5 * trial.xy * Y / seq};
   const Deviator before = inside;
-  EXPECT_EQ(radial_return(Y, mu, inside), 0.0);
+  EXPECT_EQ(radial_return(Y, 0.0, 0.0, mu, inside), 0.0);
   EXPECT_EQ(inside.xx, before.xx);
   EXPECT_EQ(inside.yy, before.yy);
   EXPECT_EQ(inside.xy, before.xy);
+}
+
+TEST(StrengthKernels, HardeningReturnLandsOnTheHardenedSurface) {
+  // Y = Y0 + H eps_p: from eps_p^n the return lands on Y0 + H (eps_p^n + d) with
+  // d = (sigma_eq - Y0 - H eps_p^n) / (3 mu + H), radially.
+  const double mu = 5e10, Y0 = 3e8, H = 2e9, eps0 = 0.01;
+  const Deviator trial{2e8, -1.5e8, 2.2e8};
+  const double seq = von_mises(trial), Yn = Y0 + H * eps0;
+  ASSERT_GT(seq, Yn);
+  Deviator s = trial;
+  const double d = radial_return(Y0, H, eps0, mu, s);
+  EXPECT_NEAR(d, (seq - Yn) / (3 * mu + H), 1e-15 * d * 4);
+  EXPECT_NEAR(von_mises(s), Y0 + H * (eps0 + d), 4e-16 * seq * 4);
+  // The consistency condition: the trial norm less the elastic relaxation 3 mu d.
+  EXPECT_NEAR(von_mises(s), seq - 3 * mu * d, 4e-16 * seq * 4);
+  EXPECT_NEAR(s.xy / s.xx, trial.xy / trial.xx, 1e-14);
+  EXPECT_NEAR(s.yy / s.xx, trial.yy / trial.xx, 1e-14);
+  // Hardened enough, the same trial stress is elastic.
+  Deviator inside = trial;
+  EXPECT_EQ(radial_return(Y0, H, (seq - Y0) / H * 1.001, mu, inside), 0.0);
+  EXPECT_EQ(inside.xx, trial.xx);
+  // H = 0 is bitwise the perfectly plastic return whatever eps_p.
+  Deviator a = trial, b = trial;
+  EXPECT_EQ(radial_return(Y0, 0.0, 0.37, mu, a), radial_return(Y0, 0.0, 0.0, mu, b));
+  EXPECT_EQ(a.xx, b.xx);
+  EXPECT_EQ(a.yy, b.yy);
+  EXPECT_EQ(a.xy, b.xy);
 }
 
 TEST(StrengthKernels, ElasticRateOfAUniaxialStrain) {

@@ -48,7 +48,7 @@ Rotation quarter_turn(int steps, bool objective) {
     Deviator half =
         advance_stress(objective, mu, s, s,
                        PlanarGeometry::velocity_gradient(4, vnx, vny, ax, ay, PlanarGeometry::area<4>(v)), dt / 2);
-    radial_return(yield, mu, half);
+    radial_return(yield, 0.0, 0.0, mu, half);
     // Move rigidly; v_bar = (x^{n+1} - x^n)/dt, half geometry x^n + dt/2 v^n.
     ZoneVertices next = v, mid = v;
     double bx[4], by[4];
@@ -64,7 +64,7 @@ Rotation quarter_turn(int steps, bool objective) {
     PlanarGeometry::corner_gradients<4>(mid, ax, ay);
     s = advance_stress(objective, mu, s, half,
                        PlanarGeometry::velocity_gradient(4, bx, by, ax, ay, PlanarGeometry::area<4>(mid)), dt);
-    radial_return(yield, mu, s);
+    radial_return(yield, 0.0, 0.0, mu, s);
     v = next;
     angle += 2 * std::atan(a);
     // Exact: S0 rotated by the angle the points actually turned.

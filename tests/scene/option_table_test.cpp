@@ -334,7 +334,7 @@ TEST_F(OptionTables, ProblemValidateUsesTheTables) {
   rejects(problem, "material 'copper': s: must be >= 0, got -0.5");
   problem = scene.problem;
   problem.options.viscosity = static_cast<stagger::Viscosity>(7);
-  rejects(problem, "numerics.viscosity: must be one of \"bulk\" or \"edge\", got 7");
+  rejects(problem, "numerics.viscosity: must be one of \"bulk\", \"edge\" or \"tensor\", got 7");
 
   stagger::RunControl control;
   EXPECT_NO_THROW(control.validate());

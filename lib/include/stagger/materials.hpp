@@ -34,10 +34,12 @@ struct Jwl {
 /// One of the equations of state above (std::visit or std::get_if to inspect).
 using EquationOfState = std::variant<IdealGas, MieGruneisen, Jwl>;
 
-/// Elastic-perfectly-plastic strength: shear modulus mu and yield stress Y (von Mises).
+/// Elastic-plastic strength: shear modulus mu and von Mises yield stress Y = Y0 + H eps_p with
+/// linear isotropic hardening (H = 0: elastic-perfectly-plastic).
 struct Strength {
-  double shear_modulus = 0;  ///< mu, >= 0
-  double yield_stress = 0;   ///< Y (sqrt(3/2 S:S) <= Y), > 0 (strength_option_table())
+  double shear_modulus = 0;      ///< mu, >= 0
+  double yield_stress = 0;       ///< Y0 (sqrt(3/2 S:S) <= Y), > 0 (strength_option_table())
+  double hardening_modulus = 0;  ///< H >= 0: dY / d(equivalent plastic strain)
 };
 
 /// Programmed burn (LS-DYNA style): lighting time = distance to the nearest detonator

@@ -39,6 +39,7 @@ void write_mesh_vtu(const std::string& path, const Mesh& mesh);
 /// A ParaView collection (.pvd) listing every dump; rewritten whole after each add().
 class PvdWriter {
  public:
+  /// An empty path keeps the series in memory only (a distributed run's ranks other than 0).
   explicit PvdWriter(std::string pvd_path);
   /// Records `vtu_file` (relative to the .pvd's directory) at `time` and rewrites the .pvd.
   void add(double time, const std::string& vtu_file);
@@ -62,6 +63,7 @@ class PvdWriter {
 /// rewritten atomically by flush().
 class HistoryWriter {
  public:
+  /// An empty path keeps the table in memory only (a distributed run's ranks other than 0).
   explicit HistoryWriter(std::string csv_path);
   /// Appends one row for the simulation's current state (in memory).
   void record(const Simulation& simulation);
@@ -82,7 +84,8 @@ struct RunSummary {
   std::string scene;                 ///< scene file (or problem name)
   double wall_seconds = 0;           ///< whole run
   double loop_seconds = 0;           ///< time loop alone (for zone_cycles_per_second)
-  int threads = 1;                   ///< OpenMP threads used
+  int threads = 1;                   ///< OpenMP threads used (per rank)
+  int ranks = 1;                     ///< MPI ranks (docs/parallel.md)
   std::string status = "completed";  ///< or the error message that stopped the run
   std::string last_dump;             ///< the last .vtu written (empty: dumps off)
   double last_dump_time = 0;         ///< its time

@@ -64,8 +64,9 @@ struct BoundaryCondition {
   std::string partner;                            ///< periodic: the other tag
 };
 
-/// Artificial viscosity: zone-centred bulk q, or the edge-centred viscosity with limiter.
-enum class Viscosity { bulk, edge };
+/// Artificial viscosity: zone-centred bulk q, the edge-centred viscosity with limiter, or the
+/// tensor q from corner strain rates (docs/algorithm.md §4.1).
+enum class Viscosity { bulk, edge, tensor };
 /// Hourglass control (docs/algorithm.md §6): the paper's viscosity on the mode
 /// Gamma = (1,-1,1,-1), or the Flanagan-Belytschko projection (better on distorted quads),
 /// or subzonal pressures from constant subzone masses (any polygon; docs/algorithm.md §18)
@@ -76,16 +77,23 @@ enum class Hourglass { gamma, flanagan_belytschko, subzonal, subzonal_triangles 
 /// incremental update S <- R S R^T (Hughes-Winget rotation).
 enum class StressUpdate { rate, objective };
 
+/// Coordinates of the 2D mesh: planar (x, y), per unit depth, or axisymmetric rz: x is the
+/// radius r >= 0, y the axial coordinate z, x = 0 the axis; masses, volumes and energies are
+/// then per radian (docs/algorithm.md §19).
+enum class CoordinateSystem { planar, rz };
+
 /// Numerical options (a scene's [numerics]). Ranges, units and meanings: numerics_option_table()
 /// in option_table.hpp, which the scene reader, validate() and docs/scenes.md share.
 struct HydroOptions {
   double cfl = 0.15;  ///< c_t, in (0, 1)
-  Viscosity viscosity = Viscosity::bulk;
+  // Defaults chosen from measurements over the verification problems (docs/algorithm.md §4.2,
+  // docs/verification.md "Default numerics").
+  Viscosity viscosity = Viscosity::tensor;
   double q1 = 1.5, q2 = 0.06;           ///< bulk q (quadratic, linear)
   double edge_c1 = 0.5, edge_c2 = 1.0;  ///< edge viscosity (linear, quadratic)
   bool edge_limiter = true;             ///< Christensen limiter for the edge viscosity
-  Hourglass hourglass = Hourglass::gamma;
-  double hourglass_coefficient = 0.1;  ///< Q; 0 turns hourglass control off
+  Hourglass hourglass = Hourglass::subzonal_triangles;
+  double hourglass_coefficient = 2.0;  ///< Q (subzonal: merit factor); 0 turns hourglass control off
   StressUpdate stress_update = StressUpdate::rate;
   bool fresh_predictor = false;  ///< evaluate f^n afresh each cycle (reference option)
   double volume_limit = 0.1;     ///< f_A
@@ -98,6 +106,7 @@ struct HydroOptions {
   /// A zone whose vertex-average centre crosses a reflex vertex (the Sedov hot corner on a
   /// Cartesian mesh) trips it while its area is still positive; false checks zone areas only.
   bool check_corner_areas = true;
+  CoordinateSystem geometry = CoordinateSystem::planar;  ///< planar or axisymmetric (docs/algorithm.md §19)
 };
 
 /// How the mesh moves (a scene's [ale]; docs/ale.md): with the material (Lagrangian), rezoned

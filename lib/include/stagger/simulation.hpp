@@ -105,6 +105,19 @@ class Simulation {
   /// Total momentum sum_p m_p v_p.
   std::array<double, 2> momentum() const;
 
+  /// @name Distributed runs (docs/parallel.md)
+  /// A Simulation made by distribute() (stagger/parallel.hpp) holds one rank's zones and
+  /// their ghosts: its field accessors and mesh() are that rank's part; step(), energy(),
+  /// momentum() and gather() are collective (every rank calls them, in the same order).
+  ///@{
+  int rank() const;   ///< this rank (0 in a serial run)
+  int ranks() const;  ///< the number of ranks (1 in a serial run)
+  /// The whole state: this Simulation in a serial run; in a distributed run, on rank 0 a
+  /// serial Simulation holding the gathered state (valid until the next gather()), null on
+  /// the other ranks.
+  const Simulation* gather() const;
+  ///@}
+
   /// Installs a remap phase, called after each Lagrangian step (nullptr: none).
   void set_remap(std::shared_ptr<Remap> remap);
   /// Called after every completed cycle (after the remap), with this simulation; nullptr
@@ -123,6 +136,7 @@ class Simulation {
 
   /// Implementation detail (opaque outside the library).
   struct Impl;
+  friend struct DistributedAccess;  ///< the distributed runs' set-up (lib/src/parallel)
 
  private:
   std::unique_ptr<Impl> impl_;

@@ -138,7 +138,9 @@ class NohSolution {
 /// to 1e-9 relative, of (max - min) / mean density, zones with r > 0.25 R_s only; on a polar
 /// mesh the groups are rings, on a Cartesian mesh pairs of zones mirrored about the diagonal,
 /// so there it measures the mirror symmetry) and `asymmetry_groups` (the number of groups).
-Reference noh_reference(double gamma = 5.0 / 3.0, double rho0 = 1.0, double u0 = 1.0);
+/// nu = 2 cylindrical (planar scenes), nu = 3 spherical (geometry = "rz"; the half-way density
+/// of the shock uses the pre-shock rho0 ((gamma+1)/(gamma-1))^(nu-1)).
+Reference noh_reference(double gamma = 5.0 / 3.0, double rho0 = 1.0, double u0 = 1.0, int nu = 2);
 
 /// The Sedov-Taylor-von Neumann point blast in a uniform ideal gas (Sedov, "Similarity and
 /// Dimensional Methods in Mechanics", 1959; closed forms of Kamm & Timmes, LA-UR-07-2849,
@@ -177,7 +179,9 @@ class SedovSolution {
 /// value between ambient rho0 and the peak zone density), `shock_radius_exact`,
 /// `shock_radius_error` ((numerical - exact)/exact), `peak_density` (max zone density),
 /// `peak_density_exact` (rho0 (gamma + 1)/(gamma - 1)).
-Reference sedov_reference(double gamma = 1.4, double rho0 = 1.0, double energy_quarter = 0.244816);
+/// nu = 3 (geometry = "rz"): spherical, energy_quarter the energy per radian of the half
+/// space z >= 0 (the sphere's energy / (4 pi)).
+Reference sedov_reference(double gamma = 1.4, double rho0 = 1.0, double energy_quarter = 0.244816, int nu = 2);
 
 /// Saltzman piston (docs/verification.md §4): piston at x = u t from x = 0 into gas of density
 /// rho0 at rest, strong shock at x_s = (gamma + 1)/2 u t, density rho0 (gamma+1)/(gamma-1)
@@ -302,6 +306,12 @@ class HowellBallShell {
 /// kinetic_energy_exact (the analytic one scaled to the simulated sector by its mass), and
 /// inner/outer_stopping_radius_exact, stopping_time_exact.
 Reference be_shell_reference(const ShellParameters& parameters = {});
+
+/// A Taylor bar moving in -y onto the rigid wall y = y0 (the lowest y of the initial mesh):
+/// no exact solution, diagnostics only (docs/solids.md §8): final_length (top - y0),
+/// length_ratio (to the initial length), impact_face_width (the x extent of the points on the
+/// wall), max_width (the x extent of the bar), max_plastic_strain.
+Reference taylor_bar_reference();
 
 /// Composition B with the JWL fit of the paper's section 5.2, in cm-g-us (pressure in Mbar,
 /// energy per volume in Mbar cc/cc = 100 kJ/cc).

@@ -246,14 +246,16 @@ bool AleRemap::remap(RemapState&) {
   std::copy(yn_.begin(), yn_.end(), s_.y.begin());
   // The remapped deviatoric stress may lie outside the yield surface (a mix of stresses
   // inside a convex set stays inside it, but the linear reconstruction may step out):
-  // radial return, without plastic work (nothing deformed).
+  // radial return, without plastic work (nothing deformed): onto the zone's yield stress
+  // Y0 + H eps_p as it is, adding no plastic strain (docs/algorithm.md §7).
   if (s_.any_strength) {
     for (const ZoneRange& r : s_.ranges) {
       const Material& mat = s_.problem.materials[r.material];
       if (!mat.strength) continue;
       for (Index z = r.begin; z < r.end; ++z) {
         Deviator d{s_.sxx[z], s_.syy[z], s_.sxy[z]};
-        radial_return(mat.strength->yield_stress, mat.strength->shear_modulus, d);
+        const double yield = mat.strength->yield_stress + mat.strength->hardening_modulus * s_.plastic[z];
+        radial_return(yield, 0.0, 0.0, mat.strength->shear_modulus, d);
         s_.sxx[z] = d.xx, s_.syy[z] = d.yy, s_.sxy[z] = d.xy;
       }
     }

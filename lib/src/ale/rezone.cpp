@@ -501,6 +501,9 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& rc, const RezoneO
   check_size(y_lag, np, "y_lag", mesh);
   check_size({x_new.data(), x_new.size()}, np, "x_new", mesh);
   check_size({y_new.data(), y_new.size()}, np, "y_new", mesh);
+  if (np > 0 && (x_new.data() == x_lag.data() || y_new.data() == y_lag.data()))
+    throw Error(
+        "rezone: x_new/y_new must be other arrays than x_lag/y_lag (the Lagrangian positions are read to the end)");
   if (static_cast<Index>(rc.kind.size()) != np)
     throw Error("rezone: the constraints were built for " + std::to_string(rc.kind.size()) + " points, the mesh " +
                 mesh.source + " has " + std::to_string(np));
@@ -515,13 +518,13 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& rc, const RezoneO
   std::copy(y_lag.begin(), y_lag.end(), y_new.begin());
   if (options.relaxation == 0 || options.iterations == 0) return result;
 
-  // Corner targets (x_ref is constant, but recomputing keeps the call pure; O(corners)).
   const Index nc = mesh.num_corners();
   ws.xs.assign(x_lag.begin(), x_lag.end());
   ws.ys.assign(y_lag.begin(), y_lag.end());
   ws.arc.assign(np, 0.0);
   ws.move_limit.resize(np);
   if (use_reference) {
+    // Corner targets (x_ref is constant, but recomputing keeps the call pure; O(corners)).
     ws.target.resize(4 * static_cast<std::size_t>(nc));
     for (Index z = 0; z < nz; ++z) {
       const Index b = mesh.zone_corner_begin[z], e = mesh.zone_corner_begin[z + 1];

@@ -87,7 +87,7 @@ struct RezoneWorkspace {
   std::vector<double> arc;         // per point: slide points' arc length along the boundary
   std::vector<double> move_limit;  // per point: max_move * shortest Lagrangian edge
   std::vector<double> weight;      // per point: relaxation actually applied
-  std::vector<std::uint8_t> flag;  // per point: marks of the validity guard
+  std::vector<std::uint8_t> flag;  // per zone: folded by the rezone (validity guard)
 };
 
 // Classifies every point. `boundaries` are the problem's conditions (periodic tags are

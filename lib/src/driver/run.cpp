@@ -76,8 +76,11 @@ class Driver {
       : simulation_(simulation),
         control_(control),
         directory_(control.output_directory.empty() ? fs::path(".") : fs::path(control.output_directory)),
-        pvd_((directory_ / (checked_name(control.name) + ".pvd")).string()),
-        history_((directory_ / "history.csv").string()) {}
+        root_(simulation.rank() == 0),
+        // A distributed run: rank 0 writes every file; the others keep the series in memory.
+        pvd_(root_ ? (directory_ / (checked_name(control.name) + ".pvd")).string()
+                   : checked_name(control.name).substr(0, 0)),
+        history_(root_ ? (directory_ / "history.csv").string() : std::string()) {}
   ~Driver() {
     if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the flock
   }
@@ -299,7 +302,7 @@ class Driver {
         dump();
         schedule_next_dump();
       }
-      if (control_.checkpoints) {
+      if (control_.checkpoints && simulation_.ranks() == 1) {  // distributed: none yet (docs/parallel.md)
         const bool by_cycles = control_.checkpoint_every_cycles > 0 && cycle % control_.checkpoint_every_cycles == 0;
         const bool by_time = control_.checkpoint_every_seconds > 0 &&
                              seconds_since(last_checkpoint) >= control_.checkpoint_every_seconds;
@@ -309,13 +312,13 @@ class Driver {
           last_checkpoint = Clock::now();
         }
       }
-      if (control_.progress && seconds_since(last_progress) >= progress_every) {
+      if (control_.progress && root_ && seconds_since(last_progress) >= progress_every) {
         print_progress(loop_start, loop_start_time, t_end, terminal);
         last_progress = Clock::now();
       }
     }
     state_.loop_seconds = loop_seconds_before + seconds_since(loop_start);
-    if (control_.progress && terminal) {
+    if (control_.progress && root_ && terminal) {
       print_progress(loop_start, loop_start_time, t_end, terminal);
       std::fputc('\n', stderr);
     }
@@ -346,10 +349,12 @@ class Driver {
     summary.scene = simulation_.problem().name.empty() ? control_.name : simulation_.problem().name;
     summary.loop_seconds = state_.loop_seconds;
     summary.threads = omp_get_max_threads();
+    summary.ranks = simulation_.ranks();
     summary.status = failure.empty() ? "completed" : failure;
-    if (control_.reference) {
+    const Simulation* whole = simulation_.gather();  // the whole state (rank 0; null elsewhere)
+    if (control_.reference && whole) {
       try {
-        control_.reference(simulation_, summary.errors, summary.diagnostics);
+        control_.reference(*whole, summary.errors, summary.diagnostics);
       } catch (const Error& error) {
         summary.diagnostics.emplace_back("reference_failed", std::numeric_limits<double>::quiet_NaN());
         if (result.completed) summary.status = std::string("reference failed: ") + error.what();
@@ -357,7 +362,7 @@ class Driver {
     }
     history_.flush();
     summary.wall_seconds = state_.wall_seconds + seconds_since(start_);
-    write_summary((directory_ / "summary.json").string(), simulation_, summary);
+    if (whole) write_summary((directory_ / "summary.json").string(), *whole, summary);
     return result;
   }
 
@@ -390,7 +395,7 @@ class Driver {
     char number[32];
     std::snprintf(number, sizeof number, "_%06lld", static_cast<long long>(state_.dump_count));
     const std::string file = control_.name + number + ".vtu";
-    write_vtu((directory_ / file).string(), simulation_);
+    if (const Simulation* whole = simulation_.gather()) write_vtu((directory_ / file).string(), *whole);
     pvd_.add(simulation_.time(), file);
     ++state_.dump_count;
     state_.last_dump_time = simulation_.time();
@@ -451,6 +456,7 @@ class Driver {
   const RunControl& control_;
   int lock_fd_ = -1;
   fs::path directory_;
+  bool root_ = true;  // rank 0 of a distributed run (or a serial run): writes the files
   PvdWriter pvd_;
   HistoryWriter history_;
   DriverState state_;
@@ -471,15 +477,20 @@ RunResult run(Simulation& simulation, const RunControl& control) {
   control.validate();
   Driver driver(simulation, control);
   driver.check_dump_count();
-  driver.prepare_directory();
-  driver.lock_directory();
-  driver.remove_previous_dumps();
+  if (simulation.rank() == 0) {  // a distributed run's files are rank 0's
+    driver.prepare_directory();
+    driver.lock_directory();
+    driver.remove_previous_dumps();
+  }
   driver.start_fresh();
   return driver.loop();
 }
 
 RunResult resume(Simulation& simulation, const RunControl& control, const std::string& checkpoint) {
   control.validate();
+  if (simulation.ranks() > 1)
+    throw Error("a distributed run cannot restart from a checkpoint yet (docs/parallel.md): restart '" + checkpoint +
+                "' on one rank, or run again from t = 0");
   Driver driver(simulation, control);
   driver.check_dump_count();
   driver.load_checkpoint(checkpoint);

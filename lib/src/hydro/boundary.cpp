@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <sstream>
@@ -43,7 +44,149 @@ void add_candidate(std::vector<Candidate>& list, Candidate c) {
   list.push_back(c);
 }
 
+// A wall edge a -> b of the initial mesh (CCW zone order: the domain is on its left).
+WallEdge wall_edge(const Mesh& mesh, Index a, Index b, int bc) {
+  WallEdge w;
+  w.a = a, w.b = b, w.bc = bc;
+  w.ax = mesh.x[a], w.ay = mesh.y[a];
+  const double dx = mesh.x[b] - w.ax, dy = mesh.y[b] - w.ay;
+  w.length = std::hypot(dx, dy);
+  w.tx = dx / w.length, w.ty = dy / w.length;
+  w.nx = w.ty, w.ny = -w.tx;
+  // Round-off of a point kept on the wall by its constraint: relative to the coordinates.
+  w.tol = 1e-9 * std::max({w.length, std::abs(w.ax), std::abs(w.ay), std::abs(mesh.x[b]), std::abs(mesh.y[b])});
+  return w;
+}
+
+// Rays at the open ends of the walls and the grid over the wall edges (docs/algorithm.md §10).
+void setup_wall_check(Simulation::Impl& s) {
+  std::vector<WallEdge>& edges = s.wall_edges;
+  if (edges.empty()) return;
+  // An end point of one wall edge only is an open end: the wall goes on along that edge.
+  std::map<Index, int> uses;
+  for (const WallEdge& w : edges) ++uses[w.a], ++uses[w.b];
+  for (const WallEdge& w : edges) {
+    for (const bool at_a : {true, false}) {
+      if (uses[at_a ? w.a : w.b] != 1) continue;
+      WallEdge ray = w;
+      ray.b = -1;
+      if (at_a) {
+        ray.tx = -w.tx, ray.ty = -w.ty;
+      } else {
+        ray.a = w.b;
+        ray.ax = w.ax + w.length * w.tx, ray.ay = w.ay + w.length * w.ty;
+      }
+      ray.length = std::numeric_limits<double>::infinity();
+      s.wall_rays.push_back(ray);
+    }
+  }
+  // Square cells about one wall edge long, at most 1024 a side.
+  WallGrid& g = s.wall_grid;
+  g.x0 = g.y0 = std::numeric_limits<double>::infinity();
+  g.x1 = g.y1 = -g.x0;
+  double total = 0, tol = 0;
+  for (const WallEdge& w : edges) {
+    const double bx = w.ax + w.length * w.tx, by = w.ay + w.length * w.ty;
+    g.x0 = std::min({g.x0, w.ax, bx}), g.x1 = std::max({g.x1, w.ax, bx});
+    g.y0 = std::min({g.y0, w.ay, by}), g.y1 = std::max({g.y1, w.ay, by});
+    total += w.length;
+    tol = std::max(tol, w.tol);
+  }
+  g.x0 -= tol, g.y0 -= tol, g.x1 += tol, g.y1 += tol;
+  const double extent = std::max(g.x1 - g.x0, g.y1 - g.y0);
+  const double h = std::max(total / static_cast<double>(edges.size()), extent / 1024);
+  g.inv_h = 1 / h;
+  g.nx = std::clamp(static_cast<int>(std::ceil((g.x1 - g.x0) * g.inv_h)), 1, 1024);
+  g.ny = std::clamp(static_cast<int>(std::ceil((g.y1 - g.y0) * g.inv_h)), 1, 1024);
+  const auto cells = [&](const WallEdge& w, auto&& f) {
+    const double bx = w.ax + w.length * w.tx, by = w.ay + w.length * w.ty;
+    const int i0 = std::clamp(static_cast<int>((std::min(w.ax, bx) - w.tol - g.x0) * g.inv_h), 0, g.nx - 1);
+    const int i1 = std::clamp(static_cast<int>((std::max(w.ax, bx) + w.tol - g.x0) * g.inv_h), 0, g.nx - 1);
+    const int j0 = std::clamp(static_cast<int>((std::min(w.ay, by) - w.tol - g.y0) * g.inv_h), 0, g.ny - 1);
+    const int j1 = std::clamp(static_cast<int>((std::max(w.ay, by) + w.tol - g.y0) * g.inv_h), 0, g.ny - 1);
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) f(j * g.nx + i);
+  };
+  g.cell_begin.assign(static_cast<std::size_t>(g.nx) * g.ny + 1, 0);
+  for (const WallEdge& w : edges) cells(w, [&](int c) { ++g.cell_begin[c + 1]; });
+  for (std::size_t c = 1; c < g.cell_begin.size(); ++c) g.cell_begin[c] += g.cell_begin[c - 1];
+  g.items.resize(g.cell_begin.back());
+  std::vector<Index> fill(g.cell_begin.begin(), g.cell_begin.end() - 1);
+  for (std::size_t e = 0; e < edges.size(); ++e)
+    cells(edges[e], [&](int c) { g.items[fill[c]++] = static_cast<Index>(e); });
+}
+
+// Point p's step (x0, y0) -> (x1, y1) leaves the domain through w: it starts inside or on the
+// wall's line and ends beyond round-off outside, crossing the line within the edge (or ray).
+bool passes_through(const WallEdge& w, Index p, double x0, double y0, double x1, double y1) {
+  const double d1 = (x1 - w.ax) * w.nx + (y1 - w.ay) * w.ny;
+  if (!(d1 > w.tol) || p == w.a || p == w.b) return false;  // the wall's own points slide along it
+  const double d0 = (x0 - w.ax) * w.nx + (y0 - w.ay) * w.ny;
+  if (d0 > w.tol) return false;  // already beyond the line (a non-convex domain): not through it now
+  const double f = d0 < 0 ? d0 / (d0 - d1) : 0.0;
+  const double u = (x0 + f * (x1 - x0) - w.ax) * w.tx + (y0 + f * (y1 - y0) - w.ay) * w.ty;
+  return u >= -w.tol && u <= w.length + w.tol;
+}
+
+// The wall edge (or ray) point p's step passes through; null if none.
+const WallEdge* crossed_wall(const Simulation::Impl& s, Index p, double x0, double y0, double x1, double y1) {
+  for (const WallEdge& w : s.wall_rays)
+    if (passes_through(w, p, x0, y0, x1, y1)) return &w;
+  const WallGrid& g = s.wall_grid;
+  const double lo_x = std::min(x0, x1), hi_x = std::max(x0, x1), lo_y = std::min(y0, y1), hi_y = std::max(y0, y1);
+  if (!(hi_x >= g.x0 && lo_x <= g.x1 && hi_y >= g.y0 && lo_y <= g.y1)) return nullptr;  // also NaN
+  const int i0 = std::max(static_cast<int>((lo_x - g.x0) * g.inv_h), 0);
+  const int i1 = std::min(static_cast<int>((hi_x - g.x0) * g.inv_h), g.nx - 1);
+  const int j0 = std::max(static_cast<int>((lo_y - g.y0) * g.inv_h), 0);
+  const int j1 = std::min(static_cast<int>((hi_y - g.y0) * g.inv_h), g.ny - 1);
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i)
+      for (Index k = g.cell_begin[j * g.nx + i]; k < g.cell_begin[j * g.nx + i + 1]; ++k)
+        if (passes_through(s.wall_edges[g.items[k]], p, x0, y0, x1, y1)) return &s.wall_edges[g.items[k]];
+  return nullptr;
+}
+
 }  // namespace
+
+Index find_wall_crossing(const Simulation::Impl& s, double dt) {
+  if (s.wall_edges.empty()) return -1;
+  const Index np = s.mesh().num_points();
+  const double *x = s.x.data(), *y = s.y.data(), *vx = s.vx.data(), *vy = s.vy.data();
+  const double *ux = s.vx_new.data(), *uy = s.vy_new.data();
+  Index first = np;
+#pragma omp parallel for schedule(static) reduction(min : first) if (np > 20000)
+  for (Index p = 0; p < np; ++p) {
+    if (!s.ghost_point.empty() && s.ghost_point[p]) continue;  // a distributed run: this rank's points
+    // x^{n+1} = x^n + dt v_bar, as Z2 and the commit form it.
+    const double x1 = x[p] + dt * 0.5 * (vx[p] + ux[p]), y1 = y[p] + dt * 0.5 * (vy[p] + uy[p]);
+    if (crossed_wall(s, p, x[p], y[p], x1, y1)) first = std::min(first, p);
+  }
+  return first < np ? first : -1;
+}
+
+std::string describe_wall_crossing(const Simulation::Impl& s, Index p, double dt) {
+  const double x1 = s.x[p] + dt * 0.5 * (s.vx[p] + s.vx_new[p]), y1 = s.y[p] + dt * 0.5 * (s.vy[p] + s.vy_new[p]);
+  const WallEdge* w = crossed_wall(s, p, s.x[p], s.y[p], x1, y1);
+  if (!w) return {};
+  const Mesh& mesh = s.mesh();
+  // A distributed run numbers points globally; a wall point off this rank is -2 - its number.
+  const auto number = [&](Index q) { return q < 0 ? -2 - q : s.global_point.empty() ? q : s.global_point[q]; };
+  const auto at = [&](Index q, double x, double y) {
+    std::ostringstream text;
+    text << "(" << (q >= 0 ? mesh.x[q] : x) << ", " << (q >= 0 ? mesh.y[q] : y) << ")";
+    return text.str();
+  };
+  std::ostringstream msg;
+  msg << "point " << number(p) << " moved from (" << s.x[p] << ", " << s.y[p] << ") to (" << x1 << ", " << y1
+      << ") through the wall '" << s.problem.boundaries[w->bc].tag << "' (";
+  if (w->b != -1)
+    msg << "its edge from point " << number(w->a) << " " << at(w->a, w->ax, w->ay) << " to point " << number(w->b)
+        << " " << at(w->b, w->ax + w->length * w->tx, w->ay + w->length * w->ty);
+  else
+    msg << "its continuation beyond its open end, point " << number(w->a) << " at (" << w->ax << ", " << w->ay << ")";
+  msg << ", outward normal (" << w->nx << ", " << w->ny << "))";
+  return msg.str();
+}
 
 void setup_boundaries(Simulation::Impl& s) {
   const Mesh& mesh = s.mesh();
@@ -73,6 +216,8 @@ void setup_boundaries(Simulation::Impl& s) {
           const double dx = mesh.x[edge[1]] - mesh.x[edge[0]], dy = mesh.y[edge[1]] - mesh.y[edge[0]];
           const double len = std::hypot(dx, dy);
           for (Index p : {edge[0], edge[1]}) add_candidate(candidates[p], {dy / len, -dx / len, velocity_index});
+          if (bc.kind == BoundaryKind::wall)
+            s.wall_edges.push_back(wall_edge(mesh, edge[0], edge[1], static_cast<int>(b)));
         }
         break;
       }
@@ -110,6 +255,11 @@ void setup_boundaries(Simulation::Impl& s) {
     }
   }
 
+  // rz: the axis x = 0 keeps v_r = 0 (a symmetry plane; docs/algorithm.md §19).
+  if (s.rz)
+    for (Index p = 0; p < mesh.num_points(); ++p)
+      if (mesh.x[p] == 0) add_candidate(candidates[p], {-1.0, 0.0, -1});
+
   for (auto& [point, list] : candidates) {
     PointConstraint c;
     c.point = point;
@@ -126,6 +276,8 @@ void setup_boundaries(Simulation::Impl& s) {
     }
     s.constraints.push_back(c);
   }
+
+  setup_wall_check(s);
 
   if (any_periodic) {
     std::map<Index, std::vector<Index>> groups;

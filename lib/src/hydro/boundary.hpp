@@ -1,6 +1,7 @@
 #pragma once
 // Boundary-condition set-up and application (docs/algorithm.md §10).
 #include <span>
+#include <string>
 #include <vector>
 
 #include "hydro/simulation_impl.hpp"
@@ -17,6 +18,15 @@ void apply_constraints(const Simulation::Impl& s, std::span<double> vx, std::spa
 // Adds the applied-pressure forces at time t on the positions (x, y) into (fx, fy).
 void add_pressure_forces(const Simulation::Impl& s, std::span<const double> x, std::span<const double> y, double t,
                          std::span<double> fx, std::span<double> fy);
+
+// No point through a wall (docs/algorithm.md §10): the lowest point whose step
+// x^n -> x^n + dt v_bar (v_bar from vx/vy and vx_new/vy_new) leaves the domain through a wall
+// edge, or through the continuation of an open wall end, by more than round-off; -1 if none.
+Index find_wall_crossing(const Simulation::Impl& s, double dt);
+
+// What find_wall_crossing found for point p: the point, its path and the wall; empty if p
+// does not cross one.
+std::string describe_wall_crossing(const Simulation::Impl& s, Index p, double dt);
 
 // The points whose velocity apply_constraints may change (for the constraint-work sum).
 std::vector<Index> constrained_points(const Simulation::Impl& s);

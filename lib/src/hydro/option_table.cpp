@@ -269,10 +269,11 @@ const OptionTable<HydroOptions>& numerics_option_table() {
       "HydroOptions",
       {
           number<&O::cfl>("cfl", {0, 1, true, true}, "-", "Courant number c_t of the time-step limit (§9)"),
-          choice<&O::viscosity>("viscosity", {"bulk", "edge"},
-                                "zone-centred bulk q (§4) or edge viscosity with limiter (§5)"),
-          number<&O::q1>("q1", at_least(0), "-", "bulk q, quadratic coefficient (§4)"),
-          number<&O::q2>("q2", at_least(0), "-", "bulk q, linear coefficient (§4)"),
+          choice<&O::viscosity>("viscosity", {"bulk", "edge", "tensor"},
+                                "zone-centred bulk q (§4), edge viscosity with limiter (§5) or tensor q from "
+                                "corner strain rates (§4.1)"),
+          number<&O::q1>("q1", at_least(0), "-", "bulk and tensor q, quadratic coefficient (§4, §4.1)"),
+          number<&O::q2>("q2", at_least(0), "-", "bulk and tensor q, linear coefficient (§4, §4.1)"),
           number<&O::edge_c1>("edge_c1", at_least(0), "-", "edge viscosity, linear coefficient c1 (§5)"),
           number<&O::edge_c2>("edge_c2", at_least(0), "-", "edge viscosity, quadratic coefficient c2 (§5)"),
           flag<&O::edge_limiter>("edge_limiter", "Christensen limiter of the edge viscosity (§5)"),
@@ -295,7 +296,10 @@ const OptionTable<HydroOptions>& numerics_option_table() {
                                    "halvings of dt for a step that tangles the mesh (§9)"),
           flag<&O::check_corner_areas>("check_corner_areas",
                                        "a non-positive median-mesh corner area counts as tangling; false: zone "
-                                       "areas only (Sedov, Noh: a zone near the origin becomes a chevron, §9)"),
+                                       "areas only (a chevron zone passes; no shipped scene needs it, §9)"),
+          choice<&O::geometry>("geometry", {"planar", "rz"},
+                               "planar (x, y) per unit depth, or axisymmetric: x = r >= 0, y = z, masses and "
+                               "energies per radian (§19)"),
       }};
   return table;
 }
@@ -381,6 +385,9 @@ const OptionTable<Strength>& strength_option_table() {
           required_number<&S::yield_stress>("yield_stress", above(0), "pressure",
                                             "von Mises yield stress Y (§7); a very large value gives an elastic "
                                             "material"),
+          number<&S::hardening_modulus>("hardening_modulus", at_least(0), "pressure",
+                                        "linear isotropic hardening H: the yield stress is Y + H eps_p with eps_p "
+                                        "the equivalent plastic strain (§7); 0 is perfectly plastic"),
       }};
   return table;
 }

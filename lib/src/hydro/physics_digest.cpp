@@ -128,6 +128,9 @@ void material_entries(const Material& mat, Digest& d) {
   if (mat.strength) {
     d.value("materials", k + "strength.shear_modulus", mat.strength->shear_modulus);
     d.value("materials", k + "strength.yield_stress", mat.strength->yield_stress);
+    // Only when set, so digests of scenes without hardening stay as they were.
+    if (mat.strength->hardening_modulus != 0)
+      d.value("materials", k + "strength.hardening_modulus", mat.strength->hardening_modulus);
   } else {
     d.value("materials", k + "strength", "none");
   }

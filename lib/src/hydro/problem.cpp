@@ -55,6 +55,11 @@ void Problem::validate() const {
   ale_option_table().validate(ale);
   for (std::size_t k = 0; k < deposits.size(); ++k)
     deposit_option_table().validate(deposits[k], "deposit[" + std::to_string(k) + "].");
+  if (options.geometry == CoordinateSystem::rz) {
+    // Not derived for the area-weighted rz scheme (docs/algorithm.md §19).
+    require(!(sources && sources->momentum),
+            "problem '" + name + "': numerics.geometry = \"rz\" does not support a momentum source");
+  }
 
   std::set<std::string> material_names;
   for (const auto& m : materials) {

@@ -101,10 +101,34 @@ void setup_edge_continuation(Simulation::Impl& s) {
   }
 }
 
+// rz (docs/algorithm.md §19): x is the radius. Points within round-off of the axis (a polar
+// mesh's cos 90 degrees) are put on it; a point at x < 0 is an error.
+void setup_axis(Mesh& m) {
+  double extent = 0;
+  for (Index p = 0; p < m.num_points(); ++p) extent = std::max({extent, std::abs(m.x[p]), std::abs(m.y[p])});
+  const double tolerance = 1e-12 * extent;
+  for (Index p = 0; p < m.num_points(); ++p) {
+    if (std::abs(m.x[p]) <= tolerance) {
+      m.x[p] = 0;
+    } else if (m.x[p] < 0) {
+      Index zone = -1;
+      for (Index c = 0; c < m.num_corners() && zone < 0; ++c)
+        if (m.corner_point[c] == p) zone = m.corner_zone[c];
+      std::ostringstream msg;
+      msg << "geometry = \"rz\": point " << p << " (" << m.x[p] << ", " << m.y[p] << ")";
+      if (zone >= 0) msg << " of " << zone_label(m, zone);
+      msg << " has a negative radius x < 0: an axisymmetric mesh lies in x >= 0 (x = r, y = z)";
+      throw Error(msg.str());
+    }
+  }
+}
+
 }  // namespace
 
 Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
   problem.validate();
+  rz = problem.options.geometry == CoordinateSystem::rz;
+  if (rz) setup_axis(problem.mesh);
   const Mesh& m = mesh();
   const Index nz = m.num_zones(), np = m.num_points();
   const HydroOptions& opt = problem.options;
@@ -183,13 +207,18 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
     }
     e[z] = e0;
     rho[z] = rho0;
-    PlanarGeometry::corner_areas(v, corner_area.data());
+    if (rz) {
+      RzGeometry::corner_volumes(v, corner_area.data());  // per radian (docs/algorithm.md §19)
+    } else {
+      PlanarGeometry::corner_areas(v, corner_area.data());
+    }
     if (subzonal) subzonal_masses(v, rho0, subzones, corner_mass.data() + m.zone_corner_begin[z]);
     for (int k = 0; k < v.n; ++k) {
       const Index c = m.zone_corner_begin[z] + k;
       const double mc = rho0 * corner_area[k];
       zone_mass[z] += mc;
-      point_mass[m.corner_point[c]] += mc;
+      // rz: the axis points are massless (their acceleration is the area-weighted one).
+      if (!(rz && m.x[m.corner_point[c]] == 0)) point_mass[m.corner_point[c]] += mc;
       if (!ale_corner_mass.empty()) ale_corner_mass[c] = mc;
     }
     if (mat.strength) {
@@ -201,6 +230,10 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
     }
   }
   for (Index p = 0; p < np; ++p) {
+    if (rz && m.x[p] == 0) {
+      axis_points.push_back(p);
+      continue;
+    }
     if (!(point_mass[p] > 0)) {
       std::ostringstream msg;
       msg << "point " << p << " (" << m.x[p] << ", " << m.y[p] << ") has no mass: a zone around it is degenerate";

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "hydro/collective.hpp"
+#include "hydro/exact_sum.hpp"
 #include "hydro/physics_digest.hpp"
 #include "hydro/simulation_impl.hpp"
 #include "hydro/state_fields.hpp"
@@ -16,6 +18,7 @@ Simulation::Simulation(Problem problem) : impl_(std::make_unique<Impl>(std::move
   impl_->owner = this;
 }
 Simulation::~Simulation() = default;
+Simulation::Impl::~Impl() = default;
 // The observer is handed the owning Simulation: keep the back pointer right across moves.
 Simulation::Simulation(Simulation&& other) noexcept : impl_(std::move(other.impl_)) {
   if (impl_) impl_->owner = this;
@@ -148,12 +151,26 @@ EnergyAudit Simulation::energy() const {
 }
 
 std::array<double, 2> Simulation::momentum() const {
-  std::array<double, 2> m{0, 0};
-  for (std::size_t p = 0; p < impl_->vx.size(); ++p) {
-    m[0] += impl_->point_mass[p] * impl_->vx[p];
-    m[1] += impl_->point_mass[p] * impl_->vy[p];
+  // Exact sums over this rank's own points (docs/parallel.md, "Determinism").
+  const Impl& s = *impl_;
+  std::array<ExactSum, 2> sums;
+  for (std::size_t p = 0; p < s.vx.size(); ++p) {
+    if (!s.ghost_point.empty() && s.ghost_point[p]) continue;
+    sums[0].add(s.point_mass[p] * s.vx[p]);
+    sums[1].add(s.point_mass[p] * s.vy[p]);
   }
-  return m;
+  if (s.collective) s.collective->sum(sums);
+  return {sums[0].value(), sums[1].value()};
+}
+
+int Simulation::rank() const {
+  return impl_->collective ? impl_->collective->rank() : 0;
+}
+int Simulation::ranks() const {
+  return impl_->collective ? impl_->collective->ranks() : 1;
+}
+const Simulation* Simulation::gather() const {
+  return impl_->collective ? impl_->collective->gather(*impl_) : this;
 }
 
 void Simulation::set_remap(std::shared_ptr<Remap> remap) {
@@ -182,6 +199,7 @@ constexpr std::string_view kBlobMagic = "STGCKPT3";  // the last character is th
 
 std::string Simulation::checkpoint() const {
   const Impl& s = *impl_;
+  if (s.collective) throw Error("a distributed run has no checkpoints yet (docs/parallel.md)");
   io_detail::ByteWriter w;
   w.raw(kBlobMagic);
   write_digest(w, s.digest);
@@ -208,6 +226,7 @@ std::string Simulation::checkpoint() const {
 
 void Simulation::restore(std::string_view blob, const std::string& source) {
   Impl& s = *impl_;
+  if (s.collective) throw Error(source + ": a distributed run cannot restart from a checkpoint yet (docs/parallel.md)");
   io_detail::ByteReader r(blob, source);
   if (blob.size() < kBlobMagic.size() || !r.raw_equals(kBlobMagic)) {
     if (blob.substr(0, kBlobMagic.size() - 1) == kBlobMagic.substr(0, kBlobMagic.size() - 1))

@@ -9,7 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "hydro/collective.hpp"
 #include "hydro/kernels/viscosity_edge.hpp"  // EdgeContinuation
+#include "hydro/walls.hpp"
 #include "stagger/simulation.hpp"
 
 namespace stagger {
@@ -18,6 +20,7 @@ namespace stagger {
 struct ZoneRange {
   Index begin = 0, end = 0;
   int material = 0;
+  bool ghost = false;  // a distributed run's ghost zones: computed, but their failures and dt are not this rank's
 };
 
 // A point with one or two velocity constraints n_i . v = g_i(t) (docs/algorithm.md §10).
@@ -76,6 +79,11 @@ struct Simulation::Impl {
   std::vector<double> corner_fx, corner_fy;
   std::vector<double> corner_mass;      // constant subzone masses (the subzonal hourglass options only)
   std::vector<double> ale_corner_mass;  // median-mesh corner masses, the remap's subcells (ALE only)
+  // Axisymmetric geometry (docs/algorithm.md §19): planar corner masses rho A_c of the force
+  // geometry, and the acceleration of the (massless) axis points with the last forces.
+  std::vector<double> corner_area_mass, axis_ax, axis_ay;
+  std::vector<Index> axis_points;  // points on x = 0 (rz)
+  bool rz = false;
   std::vector<EdgeContinuation> continuation;
 
   // Boundary conditions.
@@ -83,6 +91,8 @@ struct Simulation::Impl {
   std::vector<int> velocity_bcs;  // Problem::boundaries indices of velocity BCs
   std::vector<std::vector<Index>> periodic_groups;
   std::vector<PressureEdge> pressure_edges;
+  std::vector<WallEdge> wall_edges, wall_rays;  // walls fixed in space (boundary.cpp)
+  WallGrid wall_grid;
   std::vector<Index> external_points;  // points with external forces (pressure, sources)
   std::vector<double> ext_fx, ext_fy;  // applied-pressure force per point (when used)
   std::vector<double> src_fx, src_fy;  // momentum-source force per point (when used)
@@ -104,11 +114,18 @@ struct Simulation::Impl {
   // What defines the physics, fixed at set-up (checkpoints carry it; a restart compares it).
   std::vector<DigestEntry> digest;
 
+  // A distributed run (docs/parallel.md): the other ranks, the global number of each local
+  // zone and point, and which local ones are ghosts. Null and empty in a serial run.
+  std::unique_ptr<Collective> collective;
+  std::vector<Index> global_zone, global_point;
+  std::vector<unsigned char> ghost_zone, ghost_point;
+
   std::shared_ptr<Remap> remap;
   std::function<void(const Simulation&)> observer;
   const Simulation* owner = nullptr;  // the Simulation holding this Impl (for the observer)
 
   explicit Impl(Problem prob);
+  ~Impl();
   void step(double t_stop);
   bool try_step(double dt);  // false: a zone tangled, nothing committed
   // The calls of try_step (step.cpp; docs/algorithm.md §1).
@@ -126,6 +143,7 @@ struct Simulation::Impl {
   void recompute_state();
   // Full force evaluation at the current state (first cycle, fresh predictor).
   void evaluate_forces_now();
+  void weight_rz_forces();
   double kinetic_energy() const;
   double internal_energy() const;
 };

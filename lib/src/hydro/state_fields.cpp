@@ -17,8 +17,8 @@ constexpr double kNever = std::numeric_limits<double>::infinity();
 // Order: points, zones, corners; the dumped arrays of each entity in the order of the dumps.
 // Checkpointed: what the next cycle reads and the set-up cannot recompute (x, v, e, q, the
 // lagged corner forces, stress, plastic strain, burn fraction; the masses, which an ALE
-// remap changes). Remapped: what a remap must
-// carry to the new mesh; the rest is recomputed from it (recompute_state) or is scratch.
+// remap changes). Remapped: what a remap must carry to the new mesh; the rest is recomputed
+// from it (recompute_state) or is scratch.
 const std::array kFields = {
     // Points.
     StateField{"x", &I::x, Entity::point, Presence::always, kC},
@@ -38,6 +38,8 @@ const std::array kFields = {
     StateField{"ext_fy", &I::ext_fy, Entity::point, Presence::external},
     StateField{"src_fx", &I::src_fx, Entity::point, Presence::momentum_source},
     StateField{"src_fy", &I::src_fy, Entity::point, Presence::momentum_source},
+    StateField{"axis_ax", &I::axis_ax, Entity::point, Presence::rz, kC},
+    StateField{"axis_ay", &I::axis_ay, Entity::point, Presence::rz, kC},
     // Zones.
     StateField{"zone_mass", &I::zone_mass, Entity::zone, Presence::always, kC | kR},
     StateField{"area", &I::area, Entity::zone, Presence::always},
@@ -81,6 +83,7 @@ const std::array kFields = {
     StateField{"corner_mass", &I::corner_mass, Entity::corner, Presence::subzonal, kC | kR},
     // Median-mesh corner masses: constant in the Lagrangian phase, carried by the ALE remap.
     StateField{"ale_corner_mass", &I::ale_corner_mass, Entity::corner, Presence::ale, kC | kR},
+    StateField{"corner_area_mass", &I::corner_area_mass, Entity::corner, Presence::rz},
 };
 
 }  // namespace
@@ -113,6 +116,8 @@ bool present(const Simulation::Impl& s, Presence presence) {
              s.problem.options.hourglass == Hourglass::subzonal_triangles;
     case Presence::ale:
       return s.problem.ale.mode != AleMode::lagrangian;
+    case Presence::rz:
+      return s.problem.options.geometry == CoordinateSystem::rz;
   }
   return false;
 }

@@ -24,6 +24,7 @@ enum class Presence {
   energy_source,    // manufactured energy source
   subzonal,         // numerics.hourglass = "subzonal" or "subzonal_triangles"
   ale,              // ale.mode is not "lagrangian"
+  rz,               // numerics.geometry = "rz"
 };
 
 // What an array takes part in (bit flags).

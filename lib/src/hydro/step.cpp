@@ -17,8 +17,11 @@
 #include <vector>
 
 #include "hydro/boundary.hpp"
+#include "hydro/collective.hpp"
+#include "hydro/exact_sum.hpp"
 #include "hydro/kernels/geometry.hpp"
 #include "hydro/kernels/points.hpp"
+#include "hydro/kernels/rz.hpp"
 #include "hydro/kernels/viscosity_edge.hpp"
 #include "hydro/kernels/zone_end.hpp"
 #include "hydro/kernels/zone_forces.hpp"
@@ -31,8 +34,13 @@ namespace stagger {
 
 namespace {
 
-// The kernels' geometry policy: planar today (docs/architecture.md, "Geometry policy").
-using Geometry = PlanarGeometry;
+// The kernels' geometry policy (docs/architecture.md, "Geometry policy"): planar, or rz
+// (docs/algorithm.md §19), chosen once per loop; f gets a value of the policy type.
+using Geometry = PlanarGeometry;  // the geometry of diagnostics (tangled-zone search)
+template <class F>
+decltype(auto) with_geometry(bool rz, F&& f) {
+  return rz ? f(RzGeometry{}) : f(PlanarGeometry{});
+}
 
 // The per-material constants of the zone kernels.
 ZoneModel zone_model(const Material& material) {
@@ -42,6 +50,7 @@ ZoneModel zone_model(const Material& material) {
     m.strength = true;
     m.mu = material.strength->shear_modulus;
     m.yield = material.strength->yield_stress;
+    m.hardening = material.strength->hardening_modulus;
   }
   if (material.burn) {
     m.burn = true;
@@ -98,19 +107,19 @@ PointInput point_input(const Simulation::Impl& s) {
 std::string describe_zone(const Simulation::Impl& s, Index z) {
   const Mesh& m = s.mesh();
   std::ostringstream out;
-  out << "zone " << z << " (region '" << m.region_names[m.zone_region[z]] << "', points";
+  // A distributed run names the zone and its points by their global (serial) numbers.
+  out << "zone " << (s.global_zone.empty() ? z : s.global_zone[z]) << " (region '" << m.region_names[m.zone_region[z]]
+      << "', points";
   for (Index c = m.zone_corner_begin[z]; c < m.zone_corner_begin[z + 1]; ++c) {
     const Index p = m.corner_point[c];
-    out << ' ' << p << " (" << s.x[p] << ", " << s.y[p] << ")";
+    out << ' ' << (s.global_point.empty() ? p : s.global_point[p]) << " (" << s.x[p] << ", " << s.y[p] << ")";
   }
   out << ")";
   return out.str();
 }
 
 namespace {
-[[noreturn]] void throw_zone_failure(const Simulation::Impl& s, std::int64_t code, const std::string& what_step) {
-  const Index z = failure_zone(code);
-  const int kind = failure_kind(code);
+std::string zone_failure_message(const Simulation::Impl& s, Index z, int kind, const std::string& what_step) {
   std::ostringstream msg;
   msg << "cycle " << s.cycle << ", t = " << s.t << ": " << describe_zone(s, z);
   if (kind == kEosDomain) {
@@ -121,7 +130,22 @@ namespace {
   } else {
     msg << " has a non-positive area " << what_step;
   }
-  throw Error(msg.str());
+  return msg.str();
+}
+
+// `code` is an agreed code (global zone numbers in a distributed run, whose owner words it).
+[[noreturn]] void throw_zone_failure(const Simulation::Impl& s, std::int64_t code, const std::string& what_step) {
+  const int kind = failure_kind(code);
+  const auto text = [&](Index z) { return zone_failure_message(s, z, kind, what_step); };
+  throw Error(s.collective ? s.collective->zone_text(s, failure_zone(code), text) : text(failure_zone(code)));
+}
+
+// Distributed runs: the lowest failure and the smallest dt over the ranks (serial: as is).
+std::int64_t agreed(const Simulation::Impl& s, std::int64_t failure) {
+  return s.collective ? s.collective->min_failure(s, failure) : failure;
+}
+DtChoice agreed(const Simulation::Impl& s, DtChoice choice) {
+  return s.collective ? s.collective->min_dt(s, choice) : choice;
 }
 }  // namespace
 
@@ -145,18 +169,22 @@ void Simulation::Impl::recompute_state() {
         for (int k = 0; k < n; ++k) ux[k] = vx[corner_point[b + k]], uy[k] = vy[corner_point[b + k]];
         double dtz = 1e300;
         const double burn_z = any_burn ? burn[z] : 1.0;
-        const std::int64_t code =
-            quads ? end_state<4, Geometry>(z, v, ux, uy, zone_mass[z], e[z], burn_z, o, eos, m, out, dtz)
-                  : end_state<0, Geometry>(z, v, ux, uy, zone_mass[z], e[z], burn_z, o, eos, m, out, dtz);
-        failure = std::min(failure, code);
-        if (dtz < local.dt) local = {dtz, z};
+        const std::int64_t code = with_geometry(rz, [&](auto g) {
+          using G = decltype(g);
+          return quads ? end_state<4, G>(z, v, ux, uy, zone_mass[z], e[z], burn_z, o, eos, m, out, dtz)
+                       : end_state<0, G>(z, v, ux, uy, zone_mass[z], e[z], burn_z, o, eos, m, out, dtz);
+        });
+        if (!r.ghost) failure = std::min(failure, code);
+        if (dtz < local.dt && !r.ghost) local = {dtz, z};
       }
 #pragma omp critical
       merge_thread_choice(range_best, local);
     }
     merge_range_choice(best, range_best);
   });
+  failure = agreed(*this, failure);
   if (failure != kNoFailure) throw_zone_failure(*this, failure, "in the initial or restored state");
+  best = agreed(*this, best);
   dt_next = best.dt;
   dt_zone = best.zone;
 }
@@ -184,6 +212,7 @@ std::int64_t Simulation::Impl::zone_forces(const double* px, const double* py, d
                           data_or_null(sxx),
                           data_or_null(syy),
                           data_or_null(sxy),
+                          data_or_null(plastic),
                           data_or_null(grad_xx),
                           data_or_null(grad_xy),
                           data_or_null(grad_yx),
@@ -195,16 +224,20 @@ std::int64_t Simulation::Impl::zone_forces(const double* px, const double* py, d
                           dt_half,
                           t_eval,
                           data_or_null(corner_mass)};
-  const ZoneForceOutput out{corner_fx.data(),       corner_fy.data(),      q.data(),
-                            data_or_null(rho_half), data_or_null(c_half),  data_or_null(sxx_half),
-                            data_or_null(syy_half), data_or_null(sxy_half)};
+  const ZoneForceOutput out{corner_fx.data(),       corner_fy.data(),       q.data(),
+                            data_or_null(rho_half), data_or_null(c_half),   data_or_null(sxx_half),
+                            data_or_null(syy_half), data_or_null(sxy_half), data_or_null(corner_area_mass)};
   const HydroOptions& o = problem.options;
   std::int64_t failure = kNoFailure;
   for_each_range(*this, [&](const ZoneRange& r, const auto& eos, const ZoneModel& m) {
-    failure = std::min(failure, all_quads ? force_zones<4, Geometry>(in, o, m, eos, r.begin, r.end, out)
-                                          : force_zones<0, Geometry>(in, o, m, eos, r.begin, r.end, out));
+    const std::int64_t code = with_geometry(rz, [&](auto g) {
+      using G = decltype(g);
+      return all_quads ? force_zones<4, G>(in, o, m, eos, r.begin, r.end, out)
+                       : force_zones<0, G>(in, o, m, eos, r.begin, r.end, out);
+    });
+    if (!r.ghost) failure = std::min(failure, code);
   });
-  return failure;
+  return agreed(*this, failure);
 }
 
 // The edge viscosity's forces, added to the corner forces: geometry (px, py), velocity
@@ -232,6 +265,15 @@ void Simulation::Impl::evaluate_forces_now() {
   const std::int64_t failure = zone_forces(x.data(), y.data(), 0.0, vx.data(), vy.data(), 0.0, t);
   if (failure != kNoFailure) throw_zone_failure(*this, failure, "while evaluating forces");
   if (edge_viscosity) edge_forces(x.data(), y.data(), vx.data(), vy.data());
+  // A distributed run: the outermost ghosts' edge viscosity lacks neighbours; their owners' forces replace it.
+  if (collective) collective->exchange(*this);
+  if (rz) weight_rz_forces();
+}
+
+// rz: the area-weighted corner forces made true ones (docs/algorithm.md §19).
+void Simulation::Impl::weight_rz_forces() {
+  weight_rz_corner_forces(mesh().num_points(), point_corner_begin.data(), point_corners.data(), corner_area_mass.data(),
+                          point_mass.data(), corner_fx.data(), corner_fy.data(), axis_ax.data(), axis_ay.data());
 }
 
 // External point forces at the half step: applied pressures (boundary work) and momentum
@@ -240,6 +282,8 @@ void Simulation::Impl::external_forces(double t_half) {
   std::fill(ext_fx.begin(), ext_fx.end(), 0.0);
   std::fill(ext_fy.begin(), ext_fy.end(), 0.0);
   add_pressure_forces(*this, x_half, y_half, t_half, ext_fx, ext_fy);
+  if (rz)  // per radian: the planar force times the point's radius
+    for (Index p = 0; p < mesh().num_points(); ++p) ext_fx[p] *= x_half[p], ext_fy[p] *= x_half[p];
   if (!(problem.sources && problem.sources->momentum)) return;
   std::fill(src_fx.begin(), src_fx.end(), 0.0);
   std::fill(src_fy.begin(), src_fy.end(), 0.0);
@@ -285,6 +329,9 @@ void Simulation::Impl::predict_velocity(double dt, double t_half) {
     add_external_velocity(np, h, point_mass.data(), ext_fx.data(), ext_fy.data(), data_or_null(src_fx),
                           data_or_null(src_fy), vx_star.data(), vy_star.data());
   }
+  if (rz)
+    move_axis_points(axis_points.size(), axis_points.data(), h, axis_ax.data(), axis_ay.data(), vx.data(), vy.data(),
+                     vx_star.data(), vy_star.data());
   apply_constraints(*this, vx_star, vy_star, t_half);
 }
 
@@ -295,6 +342,9 @@ void Simulation::Impl::correct_velocity(double dt, double t_new) {
   correct_points(point_input(*this), mesh().num_points(), dt, external ? ext_fx.data() : nullptr,
                  external ? ext_fy.data() : nullptr, external ? data_or_null(src_fx) : nullptr,
                  external ? data_or_null(src_fy) : nullptr, vx_new.data(), vy_new.data());
+  if (rz)
+    move_axis_points(axis_points.size(), axis_points.data(), dt, axis_ax.data(), axis_ay.data(), vx.data(), vy.data(),
+                     vx_new.data(), vy_new.data());
   for (std::size_t i = 0; i < constrained.size(); ++i) {
     free_vx[i] = vx_new[constrained[i]];
     free_vy[i] = vy_new[constrained[i]];
@@ -335,29 +385,39 @@ std::int64_t Simulation::Impl::end_of_step(double dt, double t_new) {
                           data_or_null(syy_new),  data_or_null(sxy_new),       data_or_null(plastic_new),
                           data_or_null(burn_new), state_output(*this)};
   const HydroOptions& o = problem.options;
-  DtChoice choice;
+  DtChoice choice, ghost_choice;
   std::int64_t failure = kNoFailure;
   for_each_range(*this, [&](const ZoneRange& r, const auto& eos, const ZoneModel& m) {
-    failure = std::min(failure, all_quads ? finish_zones<4, Geometry>(in, o, m, eos, r.begin, r.end, out, choice)
-                                          : finish_zones<0, Geometry>(in, o, m, eos, r.begin, r.end, out, choice));
+    DtChoice& target = r.ghost ? ghost_choice : choice;
+    const std::int64_t code = with_geometry(rz, [&](auto g) {
+      using G = decltype(g);
+      return all_quads ? finish_zones<4, G>(in, o, m, eos, r.begin, r.end, out, target)
+                       : finish_zones<0, G>(in, o, m, eos, r.begin, r.end, out, target);
+    });
+    if (!r.ghost) failure = std::min(failure, code);
   });
-  if (failure == kNoFailure) dt_next = choice.dt, dt_zone = choice.zone;
+  failure = agreed(*this, failure);
+  if (failure == kNoFailure) choice = agreed(*this, choice), dt_next = choice.dt, dt_zone = choice.zone;
   return failure;
 }
 
 // Step 6's energy bookkeeping: the work of the constraints, applied pressures and sources,
 // with the same v_bar as the zones' energy update (docs/algorithm.md §10).
 void Simulation::Impl::account_boundary_work(double dt) {
+  // Exact sums over this rank's own points and zones (docs/parallel.md, "Determinism").
   const Index np = mesh().num_points();
-  const double constraint = constraint_work(constrained.size(), constrained.data(), point_mass.data(), vx.data(),
-                                            vy.data(), vx_new.data(), vy_new.data(), free_vx.data(), free_vy.data());
-  double external = 0, source_added = 0;
+  const unsigned char* ghost = ghost_point.empty() ? nullptr : ghost_point.data();
+  std::array<ExactSum, 3> sums;  // constraint work, external work, source work
+  constraint_work(constrained.size(), constrained.data(), ghost, point_mass.data(), vx.data(), vy.data(), vx_new.data(),
+                  vy_new.data(), free_vx.data(), free_vy.data(), sums[0]);
   if (has_external)
-    point_force_work(np, dt, vx.data(), vy.data(), vx_new.data(), vy_new.data(), ext_fx.data(), ext_fy.data(),
-                     data_or_null(src_fx), data_or_null(src_fy), external, source_added);
-  for (double w : source_energy) source_added += w;
-  boundary_work += constraint + external;
-  source_work += source_added;
+    point_force_work(np, ghost, dt, vx.data(), vy.data(), vx_new.data(), vy_new.data(), ext_fx.data(), ext_fy.data(),
+                     data_or_null(src_fx), data_or_null(src_fy), sums[1], sums[2]);
+  for (std::size_t z = 0; z < source_energy.size(); ++z)
+    if (ghost_zone.empty() || !ghost_zone[z]) sums[2].add(source_energy[z]);
+  if (collective) collective->sum(sums);
+  boundary_work += sums[0].value() + sums[1].value();
+  source_work += sums[2].value();
 }
 
 // Commit: x^{n+1} = x^n + dt v_bar (the expression of Z2), then the new state replaces the old.
@@ -386,6 +446,7 @@ bool Simulation::Impl::try_step(double dt) {
   }
   // 5. Edge viscosity forces, added to f^{n+1/2}.
   if (edge_viscosity) edge_forces(x_half.data(), y_half.data(), vx_star.data(), vy_star.data());
+  if (rz) weight_rz_forces();  // rz: true corner forces from the area-weighted ones
 
   // 6. P2: momentum v^{n+1} with the same corner forces, and the constraints.
   correct_velocity(dt, t_new);
@@ -398,12 +459,21 @@ bool Simulation::Impl::try_step(double dt) {
     if (failure_kind(failure) == kTangled) return false;
     throw_zone_failure(*this, failure, "at the end of the step");
   }
+  // No point through a wall (docs/algorithm.md §10): retried like a tangled zone.
+  Index crossing = find_wall_crossing(*this, dt);
+  if (collective) crossing = collective->min_point(*this, crossing);  // every rank retries alike
+  if (crossing >= 0) {
+    have_previous_forces = false;
+    recompute_state();
+    return false;
+  }
 
   // 6 (work). Work of the constraints, applied pressures and sources, for the audit.
   account_boundary_work(dt);
 
-  // Commit: x^{n+1}, v^{n+1}, e^{n+1}, S^{n+1}, burn.
+  // Commit: x^{n+1}, v^{n+1}, e^{n+1}, S^{n+1}, burn; a distributed run's ghosts get their owners' values.
   commit(dt);
+  if (collective) collective->exchange(*this);
   t = t_new;
   ++cycle;
   dt_last = dt;
@@ -419,7 +489,7 @@ static std::string tangling_remedies(const HydroOptions& o, AleMode ale_mode) {
   else if (o.hourglass_coefficient < 2)
     tips.push_back("a larger numerics.hourglass_coefficient (2 is measured to hold a blast in a box)");
   if (o.cfl > 0.1) tips.push_back("a lower numerics.cfl");
-  if (o.viscosity == Viscosity::bulk && o.q1 < 2) tips.push_back("a larger numerics.q1");
+  if (o.viscosity != Viscosity::edge && o.q1 < 2) tips.push_back("a larger numerics.q1");
   tips.push_back("a finer or better-shaped mesh near the zone");
   if (ale_mode == AleMode::lagrangian) tips.push_back("ale.mode = \"ale\" (rezone and remap, docs/ale.md)");
   std::string text = "try ";
@@ -452,11 +522,16 @@ void Simulation::Impl::step(double t_stop) {
     if (dt < dt_min) {
       std::ostringstream msg;
       msg << "time step collapsed at cycle " << cycle << ", t = " << t << ": dt = " << dt << " < dt_min = " << dt_min;
-      if (dt_zone >= 0 && dt_zone < mesh().num_zones()) {
-        const Index z = dt_zone;
-        msg << "; limiting " << describe_zone(*this, z) << ", area " << area[z] << ", sound speed " << c[z]
-            << ", density " << rho[z];
-      }
+      const auto limiting = [&](Index z) {
+        std::ostringstream text;
+        text << "; limiting " << describe_zone(*this, z) << ", area " << area[z] << ", sound speed " << c[z]
+             << ", density " << rho[z];
+        return text.str();
+      };
+      if (collective && dt_zone >= 0)
+        msg << collective->zone_text(*this, dt_zone, limiting);  // dt_zone is global
+      else if (dt_zone >= 0 && dt_zone < mesh().num_zones())
+        msg << limiting(dt_zone);
       msg << " (the mesh is tangling or a zone is being crushed: refine the mesh, lower the cfl, or raise the "
              "viscosity)";
       throw Error(msg.str());
@@ -469,13 +544,32 @@ void Simulation::Impl::step(double t_stop) {
       break;
     }
     if (attempt >= o.max_retries) {
-      // Report the tangled zone at the end of the last attempt.
+      // Report the tangled zone at the end of the last attempt, or the point through a wall.
       std::ostringstream msg;
+      Index tangled = find_tangled_zone(dt_taken);
+      // A distributed run: the lowest tangled zone over the ranks (global), worded by its owner.
+      const std::int64_t tangled_code =
+          collective ? collective->min_failure(*this, tangled >= 0 ? failure_code(tangled, 0) : kNoFailure) : 0;
+      if (collective) tangled = tangled_code != kNoFailure ? failure_zone(tangled_code) : -1;
+      Index p = tangled < 0 ? find_wall_crossing(*this, dt_taken) : -1;
+      if (collective && tangled < 0) p = collective->min_point(*this, p);
+      if (p >= 0) {
+        const auto crossing_text = [&](Index q) { return describe_wall_crossing(*this, q, dt_taken); };
+        msg << "cycle " << cycle << ", t = " << t << ": "
+            << (collective ? collective->point_text(*this, p, crossing_text) : crossing_text(p))
+            << " even with dt = " << dt_taken << " after " << attempt << " retries (the mesh is folding against the "
+            << "wall; " << tangling_remedies(o, problem.ale.mode) << ")";
+        throw Error(msg.str());
+      }
       msg << "cycle " << cycle << ", t = " << t
           << ": a zone tangled (non-positive area, crossing edges or a folded corner) even with dt = " << dt_taken
           << " after " << attempt << " retries";
-      const Index tangled = find_tangled_zone(dt_taken);
-      if (tangled >= 0) msg << "; " << describe_zone(*this, tangled);
+      const auto describe = [&](Index z) { return "; " + describe_zone(*this, z); };
+      if (collective) {
+        if (tangled >= 0) msg << collective->zone_text(*this, tangled, describe);  // tangled is global
+      } else if (tangled >= 0) {
+        msg << describe(tangled);
+      }
       msg << " (the mesh is folding there; " << tangling_remedies(o, problem.ale.mode) << ")";
       throw Error(msg.str());
     }
@@ -493,6 +587,7 @@ void Simulation::Impl::step(double t_stop) {
 Index Simulation::Impl::find_tangled_zone(double dt) {
   const Index nz = mesh().num_zones();
   for (Index z = 0; z < nz; ++z) {
+    if (!ghost_zone.empty() && ghost_zone[z]) continue;
     const Index b = zone_corner_begin[z];
     const int n = zone_corner_begin[z + 1] - b;
     // End positions of the failed attempt (v_new is still its velocity).
@@ -511,32 +606,24 @@ Index Simulation::Impl::find_tangled_zone(double dt) {
   return -1;
 }
 
+// The totals are exact sums, rounded once: the same for any thread count, any order and any
+// number of ranks (docs/parallel.md, "Determinism"); a rank sums its own points and zones.
 double Simulation::Impl::kinetic_energy() const {
-  // Fixed blocks in a fixed order: the same sum for any thread count.
   const Index np = mesh().num_points();
-  constexpr Index block = 4096;
-  const Index nblocks = (np + block - 1) / block;
-  double total = 0;
-  for (Index bl = 0; bl < nblocks; ++bl) {
-    double sum = 0;
-    for (Index p = bl * block; p < std::min(np, (bl + 1) * block); ++p)
-      sum += 0.5 * point_mass[p] * (vx[p] * vx[p] + vy[p] * vy[p]);
-    total += sum;
-  }
-  return total;
+  std::array<ExactSum, 1> sum;
+  for (Index p = 0; p < np; ++p)
+    if (ghost_point.empty() || !ghost_point[p]) sum[0].add(0.5 * point_mass[p] * (vx[p] * vx[p] + vy[p] * vy[p]));
+  if (collective) collective->sum(sum);
+  return sum[0].value();
 }
 
 double Simulation::Impl::internal_energy() const {
   const Index nz = mesh().num_zones();
-  constexpr Index block = 4096;
-  const Index nblocks = (nz + block - 1) / block;
-  double total = 0;
-  for (Index bl = 0; bl < nblocks; ++bl) {
-    double sum = 0;
-    for (Index z = bl * block; z < std::min(nz, (bl + 1) * block); ++z) sum += zone_mass[z] * e[z];
-    total += sum;
-  }
-  return total;
+  std::array<ExactSum, 1> sum;
+  for (Index z = 0; z < nz; ++z)
+    if (ghost_zone.empty() || !ghost_zone[z]) sum[0].add(zone_mass[z] * e[z]);
+  if (collective) collective->sum(sum);
+  return sum[0].value();
 }
 
 }  // namespace stagger

@@ -12,7 +12,7 @@ PvdWriter::PvdWriter(std::string pvd_path) : path_(std::move(pvd_path)) {}
 
 void PvdWriter::add(double time, const std::string& vtu_file) {
   entries_.emplace_back(time, vtu_file);
-  write();
+  if (!path_.empty()) write();  // no path: kept in memory only (a distributed run's other ranks)
 }
 
 void PvdWriter::mark_last_good_state(const std::string& why) {
@@ -20,7 +20,7 @@ void PvdWriter::mark_last_good_state(const std::string& why) {
   std::string note;
   for (const char c : why) note += (c == '-' && !note.empty() && note.back() == '-') ? ' ' : c;
   last_good_note_ = note;
-  write();
+  if (!path_.empty()) write();
 }
 
 void PvdWriter::write() const {
@@ -63,6 +63,7 @@ void HistoryWriter::record(const Simulation& simulation) {
 }
 
 void HistoryWriter::flush() const {
+  if (path_.empty()) return;  // kept in memory only (a distributed run's other ranks)
   write_file_atomically(path_, rows_);
 }
 

@@ -43,6 +43,7 @@ void write_summary(const std::string& path, const Simulation& simulation, const 
   text += "  \"loop_seconds\": " + json_number(summary.loop_seconds) + ",\n";
   text += "  \"zone_cycles_per_second\": " + json_number(rate) + ",\n";
   text += "  \"threads\": " + std::to_string(summary.threads) + ",\n";
+  text += "  \"ranks\": " + std::to_string(summary.ranks) + ",\n";
   text += "  \"status\": " + json_string(summary.status) + ",\n";
   // Only a stopped run has it: its last dump holds the last good state.
   if (summary.last_good_state) {

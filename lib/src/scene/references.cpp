@@ -99,8 +99,9 @@ SourceContext read_sources_section(Section& section, Problem& problem) {
 
 void read_verification_section(Section& section, const Problem& problem, const SourceContext& sources,
                                RunControl& control, VerificationSetup& setup) {
-  const std::string reference = section.choice("reference", {"shock_tube", "noh", "sedov", "saltzman", "taylor_green",
-                                                             "piston", "be_shell", "detonation", "accuracy"});
+  const std::string reference =
+      section.choice("reference", {"shock_tube", "noh", "sedov", "saltzman", "taylor_green", "piston", "be_shell",
+                                   "detonation", "accuracy", "taylor_bar"});
   setup.name = reference;
   if (reference == "shock_tube") {
     ShockTubeReference parameters;
@@ -115,7 +116,9 @@ void read_verification_section(Section& section, const Problem& problem, const S
     parameters.gamma = gas_gamma(section, problem);
     parameters.density = positive(section, "density", parameters.density);
     parameters.speed = positive(section, "speed", parameters.speed);
-    control.reference = noh_reference(parameters.gamma, parameters.density, parameters.speed);
+    // A planar scene is the cylindrical implosion, an rz scene the spherical one.
+    control.reference = noh_reference(parameters.gamma, parameters.density, parameters.speed,
+                                      problem.options.geometry == CoordinateSystem::rz ? 3 : 2);
     setup.parameters = parameters;
   } else if (reference == "sedov") {
     SedovReference parameters;
@@ -126,7 +129,8 @@ void read_verification_section(Section& section, const Problem& problem, const S
       section.fail("energy", "missing (the scene has no [[deposit]])", "write energy = 0.244816");
     parameters.density = positive(section, "density", parameters.density);
     parameters.energy_quarter = positive(section, "energy", deposited);
-    control.reference = sedov_reference(parameters.gamma, parameters.density, parameters.energy_quarter);
+    control.reference = sedov_reference(parameters.gamma, parameters.density, parameters.energy_quarter,
+                                        problem.options.geometry == CoordinateSystem::rz ? 3 : 2);
     setup.parameters = parameters;
   } else if (reference == "saltzman") {
     SaltzmanReference parameters;
@@ -146,6 +150,9 @@ void read_verification_section(Section& section, const Problem& problem, const S
     parameters.eos = material_eos<MieGruneisen>(section, material, "mie_gruneisen");
     if (!material.strength)
       section.fail("reference", "the piston needs material '" + material.name + "' with strength");
+    if (material.strength->hardening_modulus != 0)
+      section.fail("reference", "the piston's exact solution is perfectly plastic: material '" + material.name +
+                                    "' needs hardening_modulus = 0");
     parameters.shear_modulus = material.strength->shear_modulus;
     parameters.yield_stress = material.strength->yield_stress;
     parameters.initial_pressure = section.number("initial_pressure", parameters.initial_pressure);
@@ -161,6 +168,9 @@ void read_verification_section(Section& section, const Problem& problem, const S
     ShellParameters parameters;
     parameters.density = material_eos<MieGruneisen>(section, material, "mie_gruneisen").rho0;
     if (!material.strength) section.fail("reference", "the shell needs material '" + material.name + "' with strength");
+    if (material.strength->hardening_modulus != 0)
+      section.fail("reference", "the shell's exact solution is perfectly plastic: material '" + material.name +
+                                    "' needs hardening_modulus = 0");
     parameters.yield_stress = material.strength->yield_stress;
     parameters.inner_radius = positive(section, "inner_radius", parameters.inner_radius);
     parameters.outer_radius = positive(section, "outer_radius", parameters.outer_radius);
@@ -181,6 +191,8 @@ void read_verification_section(Section& section, const Problem& problem, const S
       section.fail("reference", failure.what());
     }
     setup.parameters = parameters;
+  } else if (reference == "taylor_bar") {
+    control.reference = taylor_bar_reference();  // diagnostics only: no parameters
   } else {
     if (!sources.accuracy)
       section.fail("reference",

@@ -93,9 +93,9 @@ GasState NohSolution::state(double r, double t) const {
   return {rho0_ * std::pow(1.0 + u0_ * t / r, nu_ - 1), -u0_, 0.0};
 }
 
-Reference noh_reference(double gamma, double rho0, double u0) {
-  const auto solution = std::make_shared<const NohSolution>(gamma, rho0, u0, 2);
-  return [solution, gamma, rho0](const Simulation& simulation, NamedValues& errors, NamedValues& diagnostics) {
+Reference noh_reference(double gamma, double rho0, double u0, int nu) {
+  const auto solution = std::make_shared<const NohSolution>(gamma, rho0, u0, nu);
+  return [solution, gamma, rho0, nu](const Simulation& simulation, NamedValues& errors, NamedValues& diagnostics) {
     const double t = simulation.time();
     const auto density = simulation.density();
     zone_field_errors(
@@ -104,7 +104,7 @@ Reference noh_reference(double gamma, double rho0, double u0) {
     const double exact_radius = solution->shock_radius(t);
     // Half-way between the exact plateau and the exact pre-shock density at the shock,
     // rho0 ((gamma+1)/(gamma-1))^(nu-1): (16 + 4)/2 = 10 for gamma = 5/3.
-    const double pre_shock = rho0 * (gamma + 1.0) / (gamma - 1.0);
+    const double pre_shock = rho0 * std::pow((gamma + 1.0) / (gamma - 1.0), nu - 1);
     // Only crossings beyond half the exact radius: the wall-heating dip at the centre
     // crosses the threshold too and would pull the mean inward.
     const FrontCrossing front =

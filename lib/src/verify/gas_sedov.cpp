@@ -130,8 +130,11 @@ GasState SedovSolution::state(double r, double t) const {
           2.0 * rho0_ * speed * speed / (gamma_ + 1.0) * s[2]};
 }
 
-Reference sedov_reference(double gamma, double rho0, double energy_quarter) {
-  const auto solution = std::make_shared<const SedovSolution>(gamma, 2, rho0, 4.0 * energy_quarter);
+Reference sedov_reference(double gamma, double rho0, double energy_quarter, int nu) {
+  // The quarter holds 1/4 of the plane's energy (nu = 2); in rz (nu = 3) it is the energy per
+  // radian of the half space z >= 0, 1/(4 pi) of the sphere's.
+  const double total = nu == 3 ? 4.0 * M_PI * energy_quarter : 4.0 * energy_quarter;
+  const auto solution = std::make_shared<const SedovSolution>(gamma, nu, rho0, total);
   return [solution, rho0](const Simulation& simulation, NamedValues& errors, NamedValues& diagnostics) {
     const double t = simulation.time();
     const auto density = simulation.density();

@@ -41,6 +41,8 @@ struct VelocityGradient {
 
 // Plane (x, y) geometry, per unit length in z.
 struct PlanarGeometry {
+  static constexpr bool kRz = false;
+
   // Signed zone area (shoelace), positive for counter-clockwise zones.
   template <int N = 0>
   [[gnu::always_inline]] static double area(const ZoneVertices& v) {
@@ -128,6 +130,64 @@ struct PlanarGeometry {
     const double inv = 1.0 / area;
     L.xx *= inv, L.xy *= inv, L.yx *= inv, L.yy *= inv;
     return L;
+  }
+};
+
+// Axisymmetric (r, z) geometry, per radian: x = r >= 0, y = z (docs/algorithm.md §19). The
+// area-weighted scheme keeps every planar quantity of PlanarGeometry (areas, corner area
+// vectors, lengths: the forces and the time step) and adds the true volumes V = int r dA
+// (densities, masses) and the volume divergence (1/V) dV/dt (q, the volume limit, the hoop
+// strain rate).
+struct RzGeometry : PlanarGeometry {
+  static constexpr bool kRz = true;
+
+  // V = int r dA = 1/6 sum_k (x_k + x_{k+1}) (x_k y_{k+1} - x_{k+1} y_k), positive for
+  // counter-clockwise zones in x >= 0.
+  template <int N = 0>
+  [[gnu::always_inline]] static double volume(const ZoneVertices& v) {
+    const int n = N ? N : v.n;
+    double sum = 0;
+    for (int k = 0; k < n; ++k) {
+      const int kp = (k + 1 == n) ? 0 : k + 1;
+      sum += (v.x[k] + v.x[kp]) * (v.x[k] * v.y[kp] - v.x[kp] * v.y[k]);
+    }
+    return sum / 6.0;
+  }
+
+  // div u = (1/V) sum_k u_k . dV/dx_k, the exact rate (1/V) dV/dt of the zone's volume.
+  template <int N = 0>
+  [[gnu::always_inline]] static double volume_divergence(const ZoneVertices& v, const double* ux, const double* uy,
+                                                         double volume) {
+    const int n = N ? N : v.n;
+    double rate = 0;
+    for (int k = 0; k < n; ++k) {
+      const int kp = (k + 1 == n) ? 0 : k + 1;
+      const int km = (k == 0) ? n - 1 : k - 1;
+      const double cp = v.x[k] * v.y[kp] - v.x[kp] * v.y[k];
+      const double cm = v.x[km] * v.y[k] - v.x[k] * v.y[km];
+      const double dvdx = cp + (v.x[k] + v.x[kp]) * v.y[kp] + cm - (v.x[km] + v.x[k]) * v.y[km];
+      const double dvdy = (v.x[km] + v.x[k]) * v.x[km] - (v.x[k] + v.x[kp]) * v.x[kp];
+      rate += ux[k] * dvdx + uy[k] * dvdy;
+    }
+    return rate / (6.0 * volume);
+  }
+
+  // Median-mesh corner volumes int r dA (the true corner masses rho^0 V_c at set-up).
+  template <int N = 0>
+  [[gnu::always_inline]] static void corner_volumes(const ZoneVertices& v, double* out) {
+    const int n = N ? N : v.n;
+    const auto [cx, cy] = centre<N>(v);
+    for (int k = 0; k < n; ++k) {
+      const int kp = (k + 1 == n) ? 0 : k + 1;
+      const int km = (k == 0) ? n - 1 : k - 1;
+      ZoneVertices q;
+      q.n = 4;
+      q.x[0] = v.x[k], q.y[0] = v.y[k];
+      q.x[1] = 0.5 * (v.x[k] + v.x[kp]), q.y[1] = 0.5 * (v.y[k] + v.y[kp]);
+      q.x[2] = cx, q.y[2] = cy;
+      q.x[3] = 0.5 * (v.x[k] + v.x[km]), q.y[3] = 0.5 * (v.y[k] + v.y[km]);
+      out[k] = volume<4>(q);
+    }
   }
 };
 

@@ -2,6 +2,7 @@
 // The point loops of the step (docs/algorithm.md §1): P1 (steps 2 and 4) and P2 (step 6),
 // the commit of the positions, and the work of the boundary and external forces. Each point
 // gathers its corners' forces in a fixed order (corner_forces.hpp).
+#include "hydro/exact_sum.hpp"
 #include "hydro/kernels/corner_forces.hpp"
 #include "hydro/kernels/zone_status.hpp"
 
@@ -73,27 +74,29 @@ inline void commit_positions(Index np, double dt, const double* vx, const double
 
 // Work of the velocity constraints: sum over the constrained points of M_p (v^{n+1} - v_free)
 // . v_bar (the momentum they added, times the same v_bar as the zones' energy update).
-inline double constraint_work(std::size_t count, const Index* points, const double* mass, const double* vx,
-                              const double* vy, const double* ux, const double* uy, const double* free_vx,
-                              const double* free_vy) {
-  double work = 0;
+// (Exact sums, skipping the points flagged in `skip` (a distributed run's ghosts; may be null).)
+inline void constraint_work(std::size_t count, const Index* points, const unsigned char* skip, const double* mass,
+                            const double* vx, const double* vy, const double* ux, const double* uy,
+                            const double* free_vx, const double* free_vy, ExactSum& work) {
   for (std::size_t i = 0; i < count; ++i) {
     const Index p = points[i];
+    if (skip && skip[p]) continue;
     const double bx = 0.5 * (vx[p] + ux[p]), by = 0.5 * (vy[p] + uy[p]);
-    work += mass[p] * ((ux[p] - free_vx[i]) * bx + (uy[p] - free_vy[i]) * by);
+    work.add(mass[p] * ((ux[p] - free_vx[i]) * bx + (uy[p] - free_vy[i]) * by));
   }
-  return work;
 }
 
 // Work over dt of the applied-pressure forces and of the momentum sources (src may be null)
 // with v_bar: dt sum_p F_p . v_bar_p, added to external_work and source_work.
-inline void point_force_work(Index np, double dt, const double* vx, const double* vy, const double* ux,
-                             const double* uy, const double* ext_fx, const double* ext_fy, const double* src_fx,
-                             const double* src_fy, double& external_work, double& source_work) {
+inline void point_force_work(Index np, const unsigned char* skip, double dt, const double* vx, const double* vy,
+                             const double* ux, const double* uy, const double* ext_fx, const double* ext_fy,
+                             const double* src_fx, const double* src_fy, ExactSum& external_work,
+                             ExactSum& source_work) {
   for (Index p = 0; p < np; ++p) {
+    if (skip && skip[p]) continue;
     const double bx = 0.5 * (vx[p] + ux[p]), by = 0.5 * (vy[p] + uy[p]);
-    external_work += dt * (ext_fx[p] * bx + ext_fy[p] * by);
-    if (src_fx) source_work += dt * (src_fx[p] * bx + src_fy[p] * by);
+    external_work.add(dt * (ext_fx[p] * bx + ext_fy[p] * by));
+    if (src_fx) source_work.add(dt * (src_fx[p] * bx + src_fy[p] * by));
   }
 }
 

@@ -39,27 +39,36 @@ struct Deviator {
   return out;
 }
 
-// von Mises radial return with S_zz = -(S_xx + S_yy) in the norm: scales s onto the yield
-// surface sigma_eq = Y when outside it; returns the equivalent plastic strain increment
-// (sigma_eq - Y) / (3 mu).
-[[gnu::always_inline]] inline double radial_return(double yield, double mu, Deviator& s) {
+// von Mises radial return with S_zz = -(S_xx + S_yy) in the norm and linear isotropic hardening
+// (docs/algorithm.md §7): with the yield stress Y = Y0 + H eps_p at the start of the step and the
+// trial norm sigma_eq = sqrt(3/2 S:S) > Y, the plastic strain increment that puts the returned
+// stress on the hardened surface, sigma_eq - 3 mu d = Y + H d, is d = (sigma_eq - Y) / (3 mu + H);
+// s is scaled onto Y + H d. Returns d (0 inside the surface). H = 0 is bitwise the perfectly
+// plastic return (Y + 0 eps_p = Y, 3 mu + 0 = 3 mu).
+[[gnu::always_inline]] inline double radial_return(double yield0, double hardening, double eps_p, double mu,
+                                                   Deviator& s) {
+  const double yield = yield0 + hardening * eps_p;
   const double szz = -(s.xx + s.yy);
   const double j2 = s.xx * s.xx + s.yy * s.yy + szz * szz + 2 * s.xy * s.xy;
   const double seq = std::sqrt(1.5 * j2);
   if (seq <= yield) return 0.0;
-  const double f = yield / seq;
+  const double stiffness = 3 * mu + hardening;
+  const double d = stiffness > 0 ? (seq - yield) / stiffness : 0.0;
+  const double f = (yield + hardening * d) / seq;
   s.xx *= f, s.yy *= f, s.xy *= f;
-  return mu > 0 ? (seq - yield) / (3 * mu) : 0.0;
+  return d;
 }
 
 // Half-step stress of the predictor (step 3): S^{n+1/2} = return(S^n + h dS/dt(S^n, L)),
-// L = L(v^n) on x^n; S^n itself for h = 0 (a force evaluation at t^n).
-[[gnu::always_inline]] inline Deviator predict_stress(bool objective, double mu, double yield, const Deviator& s0,
-                                                      const VelocityGradient& L, double h) {
+// L = L(v^n) on x^n, returned onto the surface hardened from eps_p^n; S^n itself for h = 0
+// (a force evaluation at t^n). The plastic strain it implies is not kept (step 8 owns it).
+[[gnu::always_inline]] inline Deviator predict_stress(bool objective, double mu, double yield0, double hardening,
+                                                      double eps_p, const Deviator& s0, const VelocityGradient& L,
+                                                      double h) {
   Deviator sh = s0;
   if (h > 0) {
     sh = advance_stress(objective, mu, s0, s0, L, h);
-    radial_return(yield, mu, sh);
+    radial_return(yield0, hardening, eps_p, mu, sh);
   }
   return sh;
 }

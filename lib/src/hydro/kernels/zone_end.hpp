@@ -10,6 +10,7 @@
 #include "hydro/kernels/burn.hpp"
 #include "hydro/kernels/energy.hpp"
 #include "hydro/kernels/geometry.hpp"
+#include "hydro/kernels/rz.hpp"
 #include "hydro/kernels/strength.hpp"
 #include "hydro/kernels/time_step.hpp"
 #include "hydro/kernels/zone_model.hpp"
@@ -18,6 +19,16 @@
 #include "stagger/problem.hpp"
 
 namespace stagger {
+
+// The mass measure of a zone: its area, or in rz its volume per radian.
+template <int N, class Geometry>
+[[gnu::always_inline]] inline double zone_measure(const ZoneVertices& v) {
+  if constexpr (Geometry::kRz) {
+    return Geometry::template volume<N>(v);
+  } else {
+    return Geometry::template area<N>(v);
+  }
+}
 
 // Outputs of the end-of-step state of a zone (per zone arrays; grad_* only with strength).
 struct ZoneStateOutput {
@@ -41,18 +52,31 @@ template <int N, class Geometry, class Eos>
   // folded median-mesh corner.
   if (!(area > 0) || edges_cross<N>(v) || (o.check_corner_areas && !(Geometry::template corner_areas<N>(v, ca) > 0)))
     return failure_code(z, kTangled);
-  const double rho = mass / area;
+  // The mass measure: the area, or in rz the volume per radian (docs/algorithm.md §19).
+  double measure = area;
+  if constexpr (Geometry::kRz) {
+    measure = Geometry::template volume<N>(v);
+    bool across = !(measure > 0);
+    for (int k = 0; k < (N ? N : v.n); ++k) across = across || v.x[k] < 0;
+    if (across) return failure_code(z, kTangled);
+  }
+  const double rho = mass / measure;
   eos::PressureSound ps{};
   if (!eos::evaluate(eos, rho, energy, ps) || energy < m.min_energy) return failure_code(z, kEosDomain);
   const double C = full_sound_speed(ps.c2, rho, m.strength, m.mu);
-  out.area[z] = area;
+  out.area[z] = measure;
   out.rho[z] = rho;
   out.p[z] = m.burn ? burn * ps.p : ps.p;
   out.c[z] = C;
   if (!std::isfinite(out.p[z]) || !std::isfinite(C)) return failure_code(z, kNotFinite);
   const int n = N ? N : v.n;
   Geometry::template corner_gradients<N>(v, ax, ay);
-  const double div = Geometry::divergence(n, ux, uy, ax, ay, area);
+  double div;
+  if constexpr (Geometry::kRz) {
+    div = Geometry::template volume_divergence<N>(v, ux, uy, measure);
+  } else {
+    div = Geometry::divergence(n, ux, uy, ax, ay, area);
+  }
   if (m.strength) {
     // The next step's predictor needs L(v^n) on x^n: this is it.
     const VelocityGradient L = Geometry::velocity_gradient(n, ux, uy, ax, ay, area);
@@ -133,10 +157,14 @@ std::int64_t finish_zones(const ZoneEndInput& input, const HydroOptions& o, cons
         const ZoneVertices vh = gather_vertices<N>(cp, b, n, in.x_half, in.y_half);
         double ax[kMaxZoneVertices], ay[kMaxZoneVertices];
         Geometry::template corner_gradients<N>(vh, ax, ay);
-        const VelocityGradient L = Geometry::velocity_gradient(n, bx, by, ax, ay, Geometry::template area<N>(vh));
+        const double area_h = Geometry::template area<N>(vh);
+        const VelocityGradient L = Geometry::velocity_gradient(n, bx, by, ax, ay, area_h);
         Deviator sn = advance_stress(objective, m.mu, {in.sxx[z], in.syy[z], in.sxy[z]},
                                      {in.sxx_half[z], in.syy_half[z], in.sxy_half[z]}, L, dt);
-        out.plastic_new[z] = in.plastic[z] + radial_return(m.yield, m.mu, sn);
+        if constexpr (Geometry::kRz)
+          add_hoop_stress_rate(m.mu, hoop_strain_rate<N>(vh, bx, by, ax, ay, area_h, Geometry::template volume<N>(vh)),
+                               dt, sn);
+        out.plastic_new[z] = in.plastic[z] + radial_return(m.yield, m.hardening, in.plastic[z], m.mu, sn);
         out.sxx_new[z] = sn.xx, out.syy_new[z] = sn.yy, out.sxy_new[z] = sn.xy;
       }
       // Step 9: end geometry, density, EOS, time-step candidate.
@@ -151,7 +179,7 @@ std::int64_t finish_zones(const ZoneEndInput& input, const HydroOptions& o, cons
       double burn = 1;
       if (m.burn) {
         burn = burn_fraction(in.burn[z], in.t_new, in.lighting_time[z], in.burn_length[z], m.burn_model,
-                             in.zone_mass[z] / Geometry::template area<N>(ve));
+                             in.zone_mass[z] / zone_measure<N, Geometry>(ve));
         out.burn_new[z] = burn;
       }
       double dtz = 1e300;

@@ -11,9 +11,11 @@
 #include "hydro/kernels/energy.hpp"
 #include "hydro/kernels/geometry.hpp"
 #include "hydro/kernels/hourglass.hpp"
+#include "hydro/kernels/rz.hpp"
 #include "hydro/kernels/strength.hpp"
 #include "hydro/kernels/subzonal_pressure.hpp"
 #include "hydro/kernels/viscosity_bulk.hpp"
+#include "hydro/kernels/viscosity_tensor.hpp"
 #include "hydro/kernels/zone_model.hpp"
 #include "hydro/kernels/zone_status.hpp"
 #include "stagger/problem.hpp"
@@ -34,7 +36,7 @@ struct ZoneForceInput {
   // its own corners before it overwrites them.
   const double *f_prev_x, *f_prev_y;
   const double *zone_mass, *e;
-  const double *sxx, *syy, *sxy;                        // S^n (strength)
+  const double *sxx, *syy, *sxy, *plastic;              // S^n, eps_p^n (strength)
   const double *grad_xx, *grad_xy, *grad_yx, *grad_yy;  // L(v^n) on x^n (strength)
   const double *burn, *lighting_time, *burn_length;     // (burn)
   const EnergySource* energy_source;                    // null: none
@@ -49,6 +51,7 @@ struct ZoneForceOutput {
   double* q;                               // bulk q
   double *rho_half, *c_half;               // half-step density and C (edge viscosity)
   double *sxx_half, *syy_half, *sxy_half;  // S^{n+1/2} (strength)
+  double* corner_area_mass;                // rho A_c per corner (rz)
 };
 
 // Z1 over the zones [begin, end) of one material (EOS `eos`, constants `m`). Returns the
@@ -64,6 +67,7 @@ std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, con
   const Index* cp = in.corner_point;
   const double *vx = in.vx, *vy = in.vy, *x = in.x, *y = in.y;
   const bool bulk_q = o.viscosity == Viscosity::bulk;
+  const bool tensor_q = o.viscosity == Viscosity::tensor;
   const bool objective = o.stress_update == StressUpdate::objective;
   const bool subzonal_any = o.hourglass == Hourglass::subzonal || o.hourglass == Hourglass::subzonal_triangles;
   const bool subzonal = subzonal_any && o.hourglass_coefficient > 0;
@@ -93,7 +97,10 @@ std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, con
     Geometry::template corner_gradients<N>(v, ax, ay);
     const double area = Geometry::template area<N>(v);
     const double mass = in.zone_mass[z];
-    const double rho = mass / area;
+    // The mass measure: the area, or in rz the volume per radian (docs/algorithm.md §19).
+    double measure = area;
+    if constexpr (Geometry::kRz) measure = Geometry::template volume<N>(v);
+    const double rho = mass / measure;
     for (int k = 0; k < n; ++k) {
       const Index p = cp[b + k];
       vnx[k] = vx[p];
@@ -117,14 +124,35 @@ std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, con
     if (m.strength) {
       // L(v^n) on x^n: kept from the end of the last step, bitwise what recomputing it gives.
       const VelocityGradient L{in.grad_xx[z], in.grad_xy[z], in.grad_yx[z], in.grad_yy[z]};
-      sh = predict_stress(objective, m.mu, m.yield, {in.sxx[z], in.syy[z], in.sxy[z]}, L, in.dt_half);
+      if constexpr (Geometry::kRz) {
+        // The hoop strain rate of v^n on x^n, which the stored planar L lacks.
+        sh = {in.sxx[z], in.syy[z], in.sxy[z]};
+        if (in.dt_half > 0) {
+          const ZoneVertices v0 = gather_vertices<N>(cp, b, n, x, y);
+          double a0x[kMaxZoneVertices], a0y[kMaxZoneVertices];
+          Geometry::template corner_gradients<N>(v0, a0x, a0y);
+          const double hoop = hoop_strain_rate<N>(v0, vnx, vny, a0x, a0y, Geometry::template area<N>(v0),
+                                                  Geometry::template volume<N>(v0));
+          sh = advance_stress(objective, m.mu, sh, sh, L, in.dt_half);
+          add_hoop_stress_rate(m.mu, hoop, in.dt_half, sh);
+          radial_return(m.yield, m.hardening, in.plastic[z], m.mu, sh);
+        }
+      } else {
+        sh = predict_stress(objective, m.mu, m.yield, m.hardening, in.plastic[z], {in.sxx[z], in.syy[z], in.sxy[z]}, L,
+                            in.dt_half);
+      }
       out.sxx_half[z] = sh.xx, out.syy_half[z] = sh.yy, out.sxy_half[z] = sh.xy;
     }
     eos::PressureSound ps{};
     const bool in_domain = eos::evaluate(eos, rho, e_half, ps);
     // The area first: a folded half-step zone has a negative density, which the EOS rejects
     // too, but it is tangling (retried with a smaller dt), not an EOS failure.
-    if (!(area > 0)) {
+    bool folded = !(area > 0);
+    if constexpr (Geometry::kRz) {
+      folded = folded || !(measure > 0);
+      for (int k = 0; k < n; ++k) folded = folded || v.x[k] < 0;  // across the axis
+    }
+    if (folded) {
       failure = std::min(failure, failure_code(z, kTangled));
     } else if (!in_domain) {
       failure = std::min(failure, failure_code(z, kEosDomain));
@@ -134,7 +162,12 @@ std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, con
       pressure *= burn_fraction(in.burn[z], in.t_eval, in.lighting_time[z], in.burn_length[z], m.burn_model, rho);
     const double C = full_sound_speed(ps.c2, rho, m.strength, m.mu);
     // Step 5: bulk q from div v* on the half geometry.
-    const double div = Geometry::divergence(n, wx, wy, ax, ay, area);
+    double div;
+    if constexpr (Geometry::kRz) {
+      div = Geometry::template volume_divergence<N>(v, wx, wy, measure);
+    } else {
+      div = Geometry::divergence(n, wx, wy, ax, ay, area);
+    }
     double qz = 0;
     if (bulk_q && div < 0)
       qz = bulk_viscosity(rho, Geometry::template characteristic_length<N>(v, area), div, C, o.q1, o.q2);
@@ -144,12 +177,32 @@ std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, con
       out.c_half[z] = C;
     }
     stress_corner_forces(n, sh, pressure + qz, ax, ay, out.fx + b, out.fy + b);
+    // Or the tensor q (docs/algorithm.md §4.1), with the same coefficients and velocity.
+    if (tensor_q)
+      out.q[z] =
+          add_tensor_viscosity_forces(n, v.x, v.y, wx, wy, area, Geometry::template characteristic_length<N>(v, area),
+                                      rho, C, o.q1, o.q2, out.fx + b, out.fy + b);
+    if constexpr (Geometry::kRz) {
+      // Area-weighted: the planar corner masses for the point weights, the hoop body force.
+      double ca[kMaxZoneVertices];
+      Geometry::template corner_areas<N>(v, ca);
+      for (int k = 0; k < n; ++k) out.corner_area_mass[b + k] = rho * ca[k];
+      if (m.strength) add_hoop_forces(n, sh, ca, measure / area, out.fx + b, out.fy + b);
+    }
     // Hourglass force with v* (quads).
     if (hg > 0 && n == 4) add_hourglass_forces(v.x, v.y, ax, ay, area, wx, wy, rho, C, hg, fb, out.fx + b, out.fy + b);
     // Subzonal pressures (any polygon; docs/algorithm.md §18).
-    if (subzonal)
-      add_subzonal_pressure_forces<N>(v, in.subzone_mass + b, mass, area, std::max(ps.c2, 0.0), o.hourglass_coefficient,
-                                      subzones, out.fx + b, out.fy + b);
+    if (subzonal) {
+      // rz: the planar subzone masses rho^0 A_k^0 against their sum (area-weighted, like the
+      // other forces; docs/algorithm.md §19).
+      double subzonal_mass = mass;
+      if constexpr (Geometry::kRz) {
+        subzonal_mass = 0;
+        for (int k = 0; k < n; ++k) subzonal_mass += in.subzone_mass[b + k];
+      }
+      add_subzonal_pressure_forces<N>(v, in.subzone_mass + b, subzonal_mass, area, std::max(ps.c2, 0.0),
+                                      o.hourglass_coefficient, subzones, out.fx + b, out.fy + b);
+    }
   }
   return failure;
 }

@@ -8,7 +8,8 @@ namespace stagger {
 
 struct ZoneModel {
   bool strength = false;
-  double mu = 0, yield = 0;  // shear modulus and yield stress (strength)
+  double mu = 0, yield = 0;  // shear modulus and initial yield stress Y0 (strength)
+  double hardening = 0;      // linear hardening modulus H: Y = Y0 + H eps_p (strength)
   bool burn = false;
   BurnModel burn_model;            // (burn)
   double edge_gamma_factor = 0.5;  // the edge viscosity's quadratic factor

@@ -1,0 +1,77 @@
+// `stagger run` under mpirun (mpi_session.hpp, docs/parallel.md).
+#include "mpi_session.hpp"
+
+#include <cstdlib>
+
+#ifdef STAGGER_WITH_MPI
+#include "stagger/parallel.hpp"
+#endif
+
+namespace stagger::cli {
+
+MpiState& mpi_state() {
+  static MpiState state;
+  return state;
+}
+
+void start_mpi_if_launched() {
+#ifdef STAGGER_WITH_MPI
+  // Open MPI's mpirun and the PMI/PMIx launchers set these in every process they start.
+  const bool launched = std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMIX_RANK") || std::getenv("PMI_SIZE");
+  MpiState& state = mpi_state();
+  if (!launched || state.active) return;
+  // gmsh meshes in a child process (fork): Open MPI's warning about it does not apply.
+  ::setenv("OMPI_MCA_mpi_warn_on_fork", "0", 0);
+  int provided = 0;
+  MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);  // OpenMP threads never call MPI
+  state.active = true;
+  MPI_Comm_rank(MPI_COMM_WORLD, &state.rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &state.ranks);
+#endif
+}
+
+void finish_mpi() {
+#ifdef STAGGER_WITH_MPI
+  MpiState& state = mpi_state();
+  if (state.active) MPI_Finalize();
+  state.active = false;
+#endif
+}
+
+void abort_mpi() {
+#ifdef STAGGER_WITH_MPI
+  if (mpi_state().active) MPI_Abort(MPI_COMM_WORLD, 1);
+#endif
+  std::exit(1);
+}
+
+void on_every_rank(const std::function<void()>& work) {
+#ifdef STAGGER_WITH_MPI
+  if (mpi_state().active) {
+    try {
+      stagger::on_every_rank(MPI_COMM_WORLD, work);
+    } catch (const CollectiveError&) {
+      throw;
+    } catch (const Error& error) {
+      throw CollectiveError(error.what());
+    }
+    return;
+  }
+#endif
+  work();
+}
+
+Simulation distributed_simulation(Problem problem) {
+#ifdef STAGGER_WITH_MPI
+  if (mpi_state().active) {
+    try {
+      return distribute(std::move(problem), MPI_COMM_WORLD);
+    } catch (const Error& error) {
+      throw CollectiveError(error.what());  // distribute's errors are the same on every rank
+    }
+  }
+#endif
+  return Simulation(std::move(problem));
+}
+
+}  // namespace stagger::cli

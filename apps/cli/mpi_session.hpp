@@ -1,0 +1,37 @@
+#pragma once
+// `stagger run` under mpirun (docs/parallel.md): MPI is started only when the process was
+// launched by mpirun (a plain `stagger run` never touches MPI), errors that every rank
+// throws alike are reported once by rank 0, and any other error stops every rank.
+#include <functional>
+#include <string>
+
+#include "stagger/error.hpp"
+#include "stagger/problem.hpp"
+#include "stagger/simulation.hpp"
+
+namespace stagger::cli {
+
+// An error every rank throws alike: rank 0 reports it, every rank exits with status 1.
+struct CollectiveError : Error {
+  using Error::Error;
+};
+
+struct MpiState {
+  bool active = false;  // MPI started (this process runs under mpirun, built with MPI)
+  int rank = 0, ranks = 1;
+};
+MpiState& mpi_state();
+
+// Starts MPI when launched by mpirun (and the build has MPI); else does nothing.
+void start_mpi_if_launched();
+// MPI_Finalize (if started).
+void finish_mpi();
+// MPI_Abort: the other ranks may be waiting in a collective operation.
+[[noreturn]] void abort_mpi();
+
+// Runs `work` on every rank; an Error on some rank becomes the same CollectiveError on all.
+void on_every_rank(const std::function<void()>& work);
+// The Simulation of this rank: the whole problem when serial, this rank's part under MPI.
+Simulation distributed_simulation(Problem problem);
+
+}  // namespace stagger::cli

@@ -1,0 +1,28 @@
+#pragma once
+/// @file parallel.hpp
+/// Distributed runs on MPI (docs/parallel.md): a Problem split over the ranks of a
+/// communicator by METIS, each rank stepping its zones and their ghosts, with the same bits
+/// as the serial run on any number of ranks. Part of the stagger_parallel library (built
+/// when MPI and METIS are found, CMake option STAGGER_MPI).
+#include <mpi.h>
+
+#include <functional>
+
+#include "stagger/simulation.hpp"
+
+namespace stagger {
+
+/// Sets up `problem` on every rank of `comm` (collective: every rank passes the same
+/// problem, e.g. from the same scene) and returns this rank's part: its zones (partitioned by
+/// METIS) with the ghost layers the step needs. On one rank it is a serial Simulation.
+/// Throws stagger::Error, the same on every rank, for a set-up error or a problem that a
+/// distributed run cannot take (periodic boundaries, a remap, fewer zones than ranks).
+/// The communicator is duplicated: the run's messages never mix with the caller's.
+Simulation distribute(Problem problem, MPI_Comm comm);
+
+/// Runs `work` on every rank of `comm` (collective); if it throws stagger::Error on some
+/// ranks, every rank throws the error of the lowest of them, so that a failure in one rank's
+/// part of a set-up (reading a file, meshing) stops every rank with the same message.
+void on_every_rank(MPI_Comm comm, const std::function<void()>& work);
+
+}  // namespace stagger

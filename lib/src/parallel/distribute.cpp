@@ -1,0 +1,589 @@
+// Distributed runs (docs/parallel.md): the problem split over MPI ranks by METIS, each rank
+// stepping its own zones and a few layers of ghost zones with the serial kernels, and the
+// collective operations the step asks for (lib/src/hydro/collective.hpp).
+//
+// Why the bits are the serial ones (docs/parallel.md, "Determinism"):
+//  - every rank sets up the whole problem as the serial run does, and copies its part of
+//    that state, so the initial state is the serial one bit for bit;
+//  - a rank's zones, points and corners keep the serial (global) order, so each point sums
+//    its corner forces in the serial order;
+//  - ghost layers are deep enough that a rank's own zones and points see only correct
+//    values during a step; after the step the owners' values overwrite the ghosts' (the
+//    exchange iterates over the state table, so a new state array is exchanged too);
+//  - failures and the time step are global minima (ties to the lowest global zone), and
+//    totals are exact sums (hydro/exact_sum.hpp).
+#include <metis.h>
+
+#include <algorithm>
+#include <chrono>
+#include <climits>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hydro/collective.hpp"
+#include "hydro/kernels/zone_status.hpp"
+#include "hydro/simulation_impl.hpp"
+#include "hydro/state_fields.hpp"
+#include "stagger/error.hpp"
+#include "stagger/parallel.hpp"
+
+namespace stagger {
+
+struct DistributedAccess {
+  static Simulation::Impl& impl(Simulation& s) { return *s.impl_; }
+};
+
+namespace {
+
+constexpr int kHaloTag = 1717;
+
+int comm_rank(MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  return rank;
+}
+int comm_size(MPI_Comm comm) {
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  return size;
+}
+
+// The zone graph (zones sharing a point), partitioned by METIS into `parts` (rank 0 only).
+std::vector<int> partition_zones(const Mesh& m, int parts) {
+  const Index nz = m.num_zones();
+  std::vector<idx_t> xadj(nz + 1, 0), adjncy;
+  adjncy.reserve(static_cast<std::size_t>(nz) * 8);
+  std::vector<Index> seen(nz, -1);
+  for (Index z = 0; z < nz; ++z) {
+    for (Index c = m.zone_corner_begin[z]; c < m.zone_corner_begin[z + 1]; ++c) {
+      const Index p = m.corner_point[c];
+      for (Index k = m.point_corner_begin[p]; k < m.point_corner_begin[p + 1]; ++k) {
+        const Index other = m.corner_zone[m.point_corners[k]];
+        if (other == z || seen[other] == z) continue;
+        seen[other] = z;
+        adjncy.push_back(other);
+      }
+    }
+    xadj[z + 1] = static_cast<idx_t>(adjncy.size());
+  }
+  idx_t vertices = nz, constraints = 1, nparts = parts, cut = 0;
+  idx_t options[METIS_NOPTIONS];
+  METIS_SetDefaultOptions(options);
+  options[METIS_OPTION_SEED] = 1;  // the same partition on every run
+  options[METIS_OPTION_NUMBERING] = 0;
+  std::vector<idx_t> part(nz, 0);
+  const int status = METIS_PartGraphKway(&vertices, &constraints, xadj.data(), adjncy.data(), nullptr, nullptr, nullptr,
+                                         &nparts, nullptr, nullptr, options, &cut, part.data());
+  if (status != METIS_OK)
+    throw Error("METIS could not partition the " + std::to_string(nz) + " zones of " + m.source + " into " +
+                std::to_string(parts) + " parts (status " + std::to_string(status) + ")");
+  return std::vector<int>(part.begin(), part.end());
+}
+
+// One rank's part: its zones and the ghost layers, in global order.
+struct Part {
+  std::vector<Index> zones, points;            // local -> global (ascending)
+  std::vector<Index> zone_local, point_local;  // global -> local, -1 when absent
+};
+
+// Owned zones and `layers` layers of zones around them (a layer: the zones sharing a point
+// with the previous ones). docs/parallel.md, "Ghost layers", gives the depth the step needs.
+Part make_part(const Mesh& m, const std::vector<int>& owner, int rank, int layers) {
+  const Index nz = m.num_zones(), np = m.num_points();
+  std::vector<unsigned char> in(nz, 0), point_done(np, 0);
+  std::vector<Index> frontier, next;
+  for (Index z = 0; z < nz; ++z)
+    if (owner[z] == rank) in[z] = 1, frontier.push_back(z);
+  for (int layer = 0; layer < layers; ++layer) {
+    next.clear();
+    for (Index z : frontier)
+      for (Index c = m.zone_corner_begin[z]; c < m.zone_corner_begin[z + 1]; ++c) {
+        const Index p = m.corner_point[c];
+        if (point_done[p]) continue;
+        point_done[p] = 1;
+        for (Index k = m.point_corner_begin[p]; k < m.point_corner_begin[p + 1]; ++k) {
+          const Index other = m.corner_zone[m.point_corners[k]];
+          if (!in[other]) in[other] = 1, next.push_back(other);
+        }
+      }
+    frontier.swap(next);
+  }
+  Part part;
+  part.zone_local.assign(nz, -1);
+  part.point_local.assign(np, -1);
+  std::vector<unsigned char> point_in(np, 0);
+  for (Index z = 0; z < nz; ++z) {
+    if (!in[z]) continue;
+    part.zone_local[z] = static_cast<Index>(part.zones.size());
+    part.zones.push_back(z);
+    for (Index c = m.zone_corner_begin[z]; c < m.zone_corner_begin[z + 1]; ++c) point_in[m.corner_point[c]] = 1;
+  }
+  for (Index p = 0; p < np; ++p)
+    if (point_in[p]) part.point_local[p] = static_cast<Index>(part.points.size()), part.points.push_back(p);
+  return part;
+}
+
+// The mesh of a part: the same arrays as the serial mesh, restricted and renumbered in the
+// same order (so each point's corners stay in the serial order).
+Mesh part_mesh(const Mesh& m, const Part& part) {
+  Mesh local;
+  local.source = m.source;
+  local.region_names = m.region_names;
+  for (Index p : part.points) local.x.push_back(m.x[p]), local.y.push_back(m.y[p]);
+  local.region_zone_begin.assign(m.num_regions() + 1, 0);
+  for (Index z : part.zones) {
+    for (Index c = m.zone_corner_begin[z]; c < m.zone_corner_begin[z + 1]; ++c) {
+      local.corner_zone.push_back(static_cast<Index>(local.zone_region.size()));
+      local.corner_point.push_back(part.point_local[m.corner_point[c]]);
+    }
+    local.zone_corner_begin.push_back(local.num_corners());
+    local.zone_region.push_back(m.zone_region[z]);
+    ++local.region_zone_begin[m.zone_region[z] + 1];
+  }
+  for (Index r = 0; r < m.num_regions(); ++r) local.region_zone_begin[r + 1] += local.region_zone_begin[r];
+  const Index np = local.num_points();
+  local.point_corner_begin.assign(np + 1, 0);
+  for (Index p : local.corner_point) ++local.point_corner_begin[p + 1];
+  for (Index p = 0; p < np; ++p) local.point_corner_begin[p + 1] += local.point_corner_begin[p];
+  local.point_corners.resize(local.corner_point.size());
+  std::vector<Index> fill(local.point_corner_begin.begin(), local.point_corner_begin.end() - 1);
+  for (Index c = 0; c < local.num_corners(); ++c) local.point_corners[fill[local.corner_point[c]]++] = c;
+  // Tags: the edges of the part's zones, in the serial order.
+  for (const BoundaryTag& tag : m.tags) {
+    BoundaryTag t;
+    t.name = tag.name;
+    for (const auto& e : tag.edges) {
+      const Index a = part.point_local[e[0]], b = part.point_local[e[1]];
+      if (a < 0 || b < 0) continue;
+      bool mine = false;
+      for (Index k = m.point_corner_begin[e[0]]; k < m.point_corner_begin[e[0] + 1] && !mine; ++k) {
+        const Index c = m.point_corners[k], z = m.corner_zone[c];
+        const Index next = c + 1 == m.zone_corner_begin[z + 1] ? m.zone_corner_begin[z] : c + 1;
+        mine = part.zone_local[z] >= 0 && m.corner_point[next] == e[1];
+      }
+      if (mine) t.edges.push_back({a, b});
+    }
+    if (tag.edges.empty()) {
+      for (Index p : tag.points)
+        if (part.point_local[p] >= 0) t.points.push_back(part.point_local[p]);
+    } else {
+      for (const auto& e : t.edges) t.points.push_back(e[0]), t.points.push_back(e[1]);
+      std::sort(t.points.begin(), t.points.end());
+      t.points.erase(std::unique(t.points.begin(), t.points.end()), t.points.end());
+    }
+    local.tags.push_back(std::move(t));
+  }
+  return local;
+}
+
+// Values of one rank's entities that another rank holds as ghosts (or the reverse).
+struct Neighbour {
+  int rank = 0;
+  std::vector<Index> send_points, send_zones, send_corners;  // this rank's owned ones (local)
+  std::vector<Index> recv_points, recv_zones, recv_corners;  // this rank's ghosts (local)
+  std::vector<double> send, recv;
+};
+
+void append_corners(const Simulation::Impl& s, const std::vector<Index>& zones, std::vector<Index>& corners) {
+  for (Index z : zones)
+    for (Index c = s.zone_corner_begin[z]; c < s.zone_corner_begin[z + 1]; ++c) corners.push_back(c);
+}
+
+class MpiCollective final : public Collective {
+ public:
+  MPI_Comm comm = MPI_COMM_NULL;
+  int my_rank = 0, size = 1;
+  std::vector<int> zone_owner;     // global zone -> rank
+  std::vector<Index> zone_local;   // global zone -> this rank's local zone, -1 when absent
+  std::vector<int> point_owner;    // global point -> rank
+  std::vector<Index> point_local;  // global point -> this rank's local point, -1 when absent
+  std::vector<Neighbour> neighbours;
+  std::vector<const StateField*> fields;  // the present state arrays, in table order
+  std::vector<Index> own_points, own_zones, own_corners;
+  // Rank 0: the whole state, and every rank's owned points, zones and corners (global).
+  std::unique_ptr<Simulation> whole;
+  std::vector<std::vector<Index>> rank_points, rank_zones, rank_corners;
+  std::vector<int> gather_counts, gather_offsets;
+  std::vector<double> gather_send, gather_recv;
+  std::vector<MPI_Request> requests;
+  // Halo statistics (docs/parallel.md): exchanges, messages and bytes sent, seconds.
+  long exchanges = 0, messages = 0;
+  double bytes = 0, halo_seconds = 0;
+
+  ~MpiCollective() override {
+    int finalized = 0;
+    MPI_Finalized(&finalized);
+    if (!finalized && comm != MPI_COMM_NULL) MPI_Comm_free(&comm);
+  }
+
+  int rank() const override { return my_rank; }
+  int ranks() const override { return size; }
+
+  std::int64_t min_failure(const Simulation::Impl& s, std::int64_t local_code) override {
+    std::int64_t code = local_code == kNoFailure
+                            ? kNoFailure
+                            : failure_code(s.global_zone[failure_zone(local_code)], failure_kind(local_code));
+    std::int64_t result = kNoFailure;
+    MPI_Allreduce(&code, &result, 1, MPI_INT64_T, MPI_MIN, comm);
+    return result;
+  }
+
+  DtChoice min_dt(const Simulation::Impl& s, DtChoice local) override {
+    // MINLOC: the smallest dt, and on a tie the smallest index (the serial tie-break).
+    struct {
+      double dt;
+      int zone;
+    } in{local.dt, local.zone >= 0 ? s.global_zone[local.zone] : INT_MAX}, out{};
+    MPI_Allreduce(&in, &out, 1, MPI_DOUBLE_INT, MPI_MINLOC, comm);
+    return {out.dt, out.zone == INT_MAX ? -1 : out.zone};
+  }
+
+  std::string zone_text(const Simulation::Impl&, Index zone, const std::function<std::string(Index)>& text) override {
+    const int owner = zone >= 0 && zone < static_cast<Index>(zone_owner.size()) ? zone_owner[zone] : 0;
+    std::string result;
+    if (my_rank == owner && zone_local[zone] >= 0) result = text(zone_local[zone]);
+    int length = static_cast<int>(result.size());
+    MPI_Bcast(&length, 1, MPI_INT, owner, comm);
+    result.resize(length);
+    MPI_Bcast(result.data(), length, MPI_CHAR, owner, comm);
+    return result;
+  }
+
+  Index min_point(const Simulation::Impl& s, Index local_point) override {
+    int point = local_point >= 0 ? s.global_point[local_point] : INT_MAX, result = INT_MAX;
+    MPI_Allreduce(&point, &result, 1, MPI_INT, MPI_MIN, comm);
+    return result == INT_MAX ? -1 : result;
+  }
+
+  std::string point_text(const Simulation::Impl&, Index point, const std::function<std::string(Index)>& text) override {
+    const int owner = point >= 0 && point < static_cast<Index>(point_owner.size()) ? point_owner[point] : 0;
+    std::string result;
+    if (my_rank == owner && point_local[point] >= 0) result = text(point_local[point]);
+    int length = static_cast<int>(result.size());
+    MPI_Bcast(&length, 1, MPI_INT, owner, comm);
+    result.resize(length);
+    MPI_Bcast(result.data(), length, MPI_CHAR, owner, comm);
+    return result;
+  }
+
+  void sum(std::span<ExactSum> sums) override {
+    // One integer sum of every accumulator's words: exact, so any reduction order gives the same.
+    const std::size_t n = sums.size(), words = ExactSum::kWords;
+    std::vector<std::int64_t> in(n * words), out(n * words);
+    for (std::size_t i = 0; i < n; ++i)
+      std::copy(sums[i].words().begin(), sums[i].words().end(), in.begin() + i * words);
+    MPI_Allreduce(in.data(), out.data(), static_cast<int>(in.size()), MPI_INT64_T, MPI_SUM, comm);
+    for (std::size_t i = 0; i < n; ++i)
+      std::copy(out.begin() + i * words, out.begin() + (i + 1) * words, sums[i].words().begin());
+  }
+
+  void exchange(Simulation::Impl& s) override {
+    const auto start = std::chrono::steady_clock::now();
+    requests.clear();
+    for (Neighbour& n : neighbours) {
+      MPI_Request r;
+      MPI_Irecv(n.recv.data(), static_cast<int>(n.recv.size()), MPI_DOUBLE, n.rank, kHaloTag, comm, &r);
+      requests.push_back(r);
+    }
+    for (Neighbour& n : neighbours) {
+      double* out = n.send.data();
+      for (const StateField* f : fields) {
+        const double* values = (s.*(f->member)).data();
+        const auto& list = f->entity == Entity::point  ? n.send_points
+                           : f->entity == Entity::zone ? n.send_zones
+                                                       : n.send_corners;
+        for (Index i : list) *out++ = values[i];
+      }
+      MPI_Request r;
+      MPI_Isend(n.send.data(), static_cast<int>(n.send.size()), MPI_DOUBLE, n.rank, kHaloTag, comm, &r);
+      requests.push_back(r);
+      ++messages;
+      bytes += static_cast<double>(n.send.size() * sizeof(double));
+    }
+    MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+    for (Neighbour& n : neighbours) {
+      const double* in = n.recv.data();
+      for (const StateField* f : fields) {
+        double* values = (s.*(f->member)).data();
+        const auto& list = f->entity == Entity::point  ? n.recv_points
+                           : f->entity == Entity::zone ? n.recv_zones
+                                                       : n.recv_corners;
+        for (Index i : list) values[i] = *in++;
+      }
+    }
+    ++exchanges;
+    halo_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+
+  const Simulation* gather(const Simulation::Impl& s) override {
+    double* out = gather_send.data();
+    for (const StateField* f : fields) {
+      const double* values = (s.*(f->member)).data();
+      const auto& list = f->entity == Entity::point ? own_points : f->entity == Entity::zone ? own_zones : own_corners;
+      for (Index i : list) *out++ = values[i];
+    }
+    MPI_Gatherv(gather_send.data(), static_cast<int>(gather_send.size()), MPI_DOUBLE, gather_recv.data(),
+                gather_counts.data(), gather_offsets.data(), MPI_DOUBLE, 0, comm);
+    if (my_rank != 0) return nullptr;
+    Simulation::Impl& w = DistributedAccess::impl(*whole);
+    for (int q = 0; q < size; ++q) {
+      const double* in = gather_recv.data() + gather_offsets[q];
+      for (const StateField* f : fields) {
+        double* values = (w.*(f->member)).data();
+        const auto& list = f->entity == Entity::point  ? rank_points[q]
+                           : f->entity == Entity::zone ? rank_zones[q]
+                                                       : rank_corners[q];
+        for (Index i : list) values[i] = *in++;
+      }
+    }
+    // The scalars are the same on every rank (dt_zone is already global).
+    w.t = s.t, w.dt_last = s.dt_last, w.dt_next = s.dt_next, w.dt_control_prev = s.dt_control_prev;
+    w.cycle = s.cycle, w.have_previous_forces = s.have_previous_forces;
+    w.energy_initial = s.energy_initial, w.boundary_work = s.boundary_work, w.source_work = s.source_work;
+    w.dt_reason = s.dt_reason, w.dt_zone = s.dt_zone, w.ale_fixup = s.ale_fixup;
+    return whole.get();
+  }
+};
+
+// The flags that decide which arrays exist and which kernel variants run: the whole
+// problem's, on every rank (a part may lack the region or boundary that sets one).
+void copy_configuration(const Simulation::Impl& from, Simulation::Impl& to) {
+  to.any_strength = from.any_strength;
+  to.any_burn = from.any_burn;
+  to.all_quads = from.all_quads;
+  to.edge_viscosity = from.edge_viscosity;
+  to.has_external = from.has_external;
+  to.dt_min = from.dt_min;
+}
+
+}  // namespace
+
+void on_every_rank(MPI_Comm comm, const std::function<void()>& work) {
+  const int rank = comm_rank(comm);
+  std::string message;
+  int failed = INT_MAX;
+  try {
+    work();
+  } catch (const Error& error) {
+    message = error.what();
+    failed = rank;
+  }
+  int lowest = INT_MAX;
+  MPI_Allreduce(&failed, &lowest, 1, MPI_INT, MPI_MIN, comm);
+  if (lowest == INT_MAX) return;
+  int length = static_cast<int>(message.size());
+  MPI_Bcast(&length, 1, MPI_INT, lowest, comm);
+  message.resize(length);
+  MPI_Bcast(message.data(), length, MPI_CHAR, lowest, comm);
+  throw Error(message);
+}
+
+Simulation distribute(Problem problem, MPI_Comm comm) {
+  const int size = comm_size(comm), rank = comm_rank(comm);
+  if (size == 1) return Simulation(std::move(problem));
+  if (problem.ale.mode != AleMode::lagrangian)
+    throw Error("ale.mode: a distributed run is Lagrangian only yet (docs/parallel.md); run an ALE scene on one rank");
+  for (const auto& bc : problem.boundaries)
+    if (bc.kind == BoundaryKind::periodic)
+      throw Error("periodic boundary '" + bc.tag + "': a distributed run cannot take periodic boundaries yet " +
+                  "(docs/parallel.md); run on one rank");
+  if (problem.mesh.num_zones() < size)
+    throw Error("the mesh has " + std::to_string(problem.mesh.num_zones()) + " zones, fewer than the " +
+                std::to_string(size) + " ranks");
+  // The part's problem: everything but the mesh and the energy deposits (their energy comes
+  // with the copied state).
+  Problem part_problem;
+  part_problem.name = problem.name;
+  part_problem.materials = problem.materials;
+  part_problem.regions = problem.regions;
+  part_problem.boundaries = problem.boundaries;
+  part_problem.sources = problem.sources;
+  part_problem.options = problem.options;
+  part_problem.t_end = problem.t_end;
+  part_problem.ale = problem.ale;
+  // The whole set-up, as the serial run makes it (its errors are the same on every rank).
+  auto whole = std::make_unique<Simulation>(std::move(problem));
+  const Simulation::Impl& g = DistributedAccess::impl(*whole);
+  const Mesh& m = g.mesh();
+
+  auto collective = std::make_unique<MpiCollective>();
+  MPI_Comm_dup(comm, &collective->comm);
+  MPI_Comm c = collective->comm;
+  collective->my_rank = rank;
+  collective->size = size;
+  std::vector<int>& owner = collective->zone_owner;
+  owner.assign(m.num_zones(), 0);
+  on_every_rank(c, [&] {
+    if (rank == 0) owner = partition_zones(m, size);
+  });
+  MPI_Bcast(owner.data(), m.num_zones(), MPI_INT, 0, c);
+  std::vector<Index> per_rank(size, 0);
+  for (int o : owner) ++per_rank[o];
+  for (int q = 0; q < size; ++q)
+    if (per_rank[q] == 0) throw Error("METIS left rank " + std::to_string(q) + " without zones; run on fewer ranks");
+  // A point belongs to the lowest rank among its zones' owners.
+  std::vector<int> point_owner(m.num_points(), INT_MAX);
+  for (Index z = 0; z < m.num_zones(); ++z)
+    for (Index k = m.zone_corner_begin[z]; k < m.zone_corner_begin[z + 1]; ++k)
+      point_owner[m.corner_point[k]] = std::min(point_owner[m.corner_point[k]], owner[z]);
+
+  std::unique_ptr<Simulation> local;
+  Part part;
+  on_every_rank(c, [&] {
+    // Two layers: the corner forces of the zones around this rank's points and their
+    // predicted velocities; a third for the edge viscosity's neighbours (docs/parallel.md).
+    part = make_part(m, owner, rank, g.edge_viscosity ? 3 : 2);
+    part_problem.mesh = part_mesh(m, part);
+    local = std::make_unique<Simulation>(std::move(part_problem));
+  });
+  Simulation::Impl& s = DistributedAccess::impl(*local);
+  copy_configuration(g, s);
+  allocate_state(s);  // the arrays of the whole problem's configuration
+  // The state: the serial set-up's, bit for bit.
+  for (const StateField& f : state_fields()) {
+    if (!present(s, f.presence)) continue;
+    std::vector<double>& to = s.*f.member;
+    const std::vector<double>& from = g.*f.member;
+    switch (f.entity) {
+      case Entity::point:
+        for (std::size_t i = 0; i < part.points.size(); ++i) to[i] = from[part.points[i]];
+        break;
+      case Entity::zone:
+        for (std::size_t i = 0; i < part.zones.size(); ++i) to[i] = from[part.zones[i]];
+        break;
+      case Entity::corner:
+        for (std::size_t i = 0; i < part.zones.size(); ++i) {
+          const Index lb = s.zone_corner_begin[i], gb = g.zone_corner_begin[part.zones[i]];
+          const Index n = s.zone_corner_begin[i + 1] - lb;
+          for (Index k = 0; k < n; ++k) to[lb + k] = from[gb + k];
+        }
+        break;
+    }
+  }
+  s.t = g.t, s.dt_last = g.dt_last, s.dt_next = g.dt_next, s.dt_control_prev = g.dt_control_prev;
+  s.cycle = g.cycle, s.have_previous_forces = g.have_previous_forces, s.dt_zone = g.dt_zone;
+  s.energy_initial = g.energy_initial, s.boundary_work = g.boundary_work, s.source_work = g.source_work;
+  // The walls as fixed lines (the no-crossing check): the whole problem's, so that a point is
+  // tested against every wall as in the serial run; a wall point off this part becomes -2 - its number.
+  s.wall_edges = g.wall_edges;
+  s.wall_rays = g.wall_rays;
+  s.wall_grid = g.wall_grid;
+  for (auto* walls : {&s.wall_edges, &s.wall_rays})
+    for (WallEdge& w : *walls) {
+      w.a = part.point_local[w.a] >= 0 ? part.point_local[w.a] : -2 - w.a;
+      if (w.b >= 0) w.b = part.point_local[w.b] >= 0 ? part.point_local[w.b] : -2 - w.b;
+    }
+
+  // Ownership, the global numbers, and the ranges split into own and ghost runs.
+  const Index nz = static_cast<Index>(part.zones.size()), np = static_cast<Index>(part.points.size());
+  s.global_zone = part.zones;
+  s.global_point = part.points;
+  s.ghost_zone.assign(nz, 0);
+  s.ghost_point.assign(np, 0);
+  for (Index z = 0; z < nz; ++z) s.ghost_zone[z] = owner[part.zones[z]] != rank;
+  for (Index p = 0; p < np; ++p) s.ghost_point[p] = point_owner[part.points[p]] != rank;
+  std::vector<ZoneRange> ranges;
+  for (const ZoneRange& r : s.ranges)
+    for (Index z = r.begin; z < r.end;) {
+      const bool ghost = s.ghost_zone[z] != 0;
+      Index e = z;
+      while (e < r.end && (s.ghost_zone[e] != 0) == ghost) ++e;
+      ranges.push_back({z, e, r.material, ghost});
+      z = e;
+    }
+  s.ranges = std::move(ranges);
+  for (Index z = 0; z < nz; ++z)
+    if (!s.ghost_zone[z]) collective->own_zones.push_back(z);
+  for (Index p = 0; p < np; ++p)
+    if (!s.ghost_point[p]) collective->own_points.push_back(p);
+  append_corners(s, collective->own_zones, collective->own_corners);
+  collective->zone_local = std::move(part.zone_local);
+  collective->point_owner = point_owner;
+  collective->point_local = part.point_local;
+
+  // Halo lists: this rank's ghosts by owner; the owners learn them as global numbers.
+  std::vector<std::vector<Index>> ghost_points(size), ghost_zones(size);
+  for (Index p = 0; p < np; ++p)
+    if (s.ghost_point[p]) ghost_points[point_owner[part.points[p]]].push_back(p);
+  for (Index z = 0; z < nz; ++z)
+    if (s.ghost_zone[z]) ghost_zones[owner[part.zones[z]]].push_back(z);
+  std::vector<int> send_counts(2 * size), recv_counts(2 * size);
+  for (int q = 0; q < size; ++q)
+    send_counts[2 * q] = static_cast<int>(ghost_points[q].size()),
+                    send_counts[2 * q + 1] = static_cast<int>(ghost_zones[q].size());
+  MPI_Alltoall(send_counts.data(), 2, MPI_INT, recv_counts.data(), 2, MPI_INT, c);
+  std::vector<int> sc(size), sd(size), rc(size), rd(size);
+  std::vector<Index> send_ids, recv_ids;
+  for (int q = 0; q < size; ++q) {
+    sd[q] = static_cast<int>(send_ids.size());
+    for (Index p : ghost_points[q]) send_ids.push_back(part.points[p]);
+    for (Index z : ghost_zones[q]) send_ids.push_back(part.zones[z]);
+    sc[q] = static_cast<int>(send_ids.size()) - sd[q];
+    rc[q] = recv_counts[2 * q] + recv_counts[2 * q + 1];
+    rd[q] = q == 0 ? 0 : rd[q - 1] + rc[q - 1];
+  }
+  recv_ids.resize(rd[size - 1] + rc[size - 1]);
+  MPI_Alltoallv(send_ids.data(), sc.data(), sd.data(), MPI_INT32_T, recv_ids.data(), rc.data(), rd.data(), MPI_INT32_T,
+                c);
+  for (const StateField& f : state_fields())
+    if (present(s, f.presence)) collective->fields.push_back(&f);
+  std::size_t per_point = 0, per_zone = 0, per_corner = 0;
+  for (const StateField* f : collective->fields)
+    (f->entity == Entity::point ? per_point : f->entity == Entity::zone ? per_zone : per_corner) += 1;
+  for (int q = 0; q < size; ++q) {
+    if (q == rank || (sc[q] == 0 && rc[q] == 0)) continue;
+    Neighbour n;
+    n.rank = q;
+    n.recv_points = ghost_points[q];
+    n.recv_zones = ghost_zones[q];
+    append_corners(s, n.recv_zones, n.recv_corners);
+    for (int i = 0; i < recv_counts[2 * q]; ++i) n.send_points.push_back(part.point_local[recv_ids[rd[q] + i]]);
+    for (int i = 0; i < recv_counts[2 * q + 1]; ++i)
+      n.send_zones.push_back(collective->zone_local[recv_ids[rd[q] + recv_counts[2 * q] + i]]);
+    append_corners(s, n.send_zones, n.send_corners);
+    n.send.resize(per_point * n.send_points.size() + per_zone * n.send_zones.size() +
+                  per_corner * n.send_corners.size());
+    n.recv.resize(per_point * n.recv_points.size() + per_zone * n.recv_zones.size() +
+                  per_corner * n.recv_corners.size());
+    collective->neighbours.push_back(std::move(n));
+  }
+
+  // Gather to rank 0 (dumps, summary): every rank's owned entities, in global order.
+  const std::size_t own_values = per_point * collective->own_points.size() + per_zone * collective->own_zones.size() +
+                                 per_corner * collective->own_corners.size();
+  collective->gather_send.resize(own_values);
+  if (rank == 0) {
+    collective->rank_points.resize(size);
+    collective->rank_zones.resize(size);
+    collective->rank_corners.resize(size);
+    for (Index p = 0; p < m.num_points(); ++p) collective->rank_points[point_owner[p]].push_back(p);
+    for (Index z = 0; z < m.num_zones(); ++z) {
+      collective->rank_zones[owner[z]].push_back(z);
+      for (Index k = m.zone_corner_begin[z]; k < m.zone_corner_begin[z + 1]; ++k)
+        collective->rank_corners[owner[z]].push_back(k);
+    }
+    collective->gather_counts.resize(size);
+    collective->gather_offsets.resize(size);
+    std::size_t total = 0;
+    for (int q = 0; q < size; ++q) {
+      const std::size_t count = per_point * collective->rank_points[q].size() +
+                                per_zone * collective->rank_zones[q].size() +
+                                per_corner * collective->rank_corners[q].size();
+      if (total + count > static_cast<std::size_t>(INT_MAX))
+        throw Error("the gathered state is too large for one MPI message (" + std::to_string(total + count) +
+                    " values)");
+      collective->gather_counts[q] = static_cast<int>(count);
+      collective->gather_offsets[q] = static_cast<int>(total);
+      total += count;
+    }
+    collective->gather_recv.resize(total);
+    collective->whole = std::move(whole);
+  }
+  whole.reset();
+  s.collective = std::move(collective);
+  return std::move(*local);
+}
+
+}  // namespace stagger

@@ -1,0 +1,75 @@
+// The axisymmetric (rz) kernels (docs/algorithm.md §19): volumes and volume rates against
+// closed forms, and the hoop stress of a uniformly expanding ring against the exact elastic
+// (and then perfectly plastic) answer.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "hydro/kernels/rz.hpp"
+
+namespace stagger {
+
+TEST(Rz, VolumeAndVolumeRateOfARectangle) {
+  ZoneVertices v;
+  v.n = 4;
+  const double xs[4] = {0.5, 2.0, 2.0, 0.5}, ys[4] = {1.0, 1.0, 1.5, 1.5};
+  for (int k = 0; k < 4; ++k) v.x[k] = xs[k], v.y[k] = ys[k];
+  const double volume = RzGeometry::volume<4>(v);
+  EXPECT_NEAR(volume, 0.5 * (4.0 - 0.25) * 0.5, 1e-15);
+  // v_r = a r, v_z = b z: dV/dt / V = 2 a + b exactly (V ~ r^2 dz).
+  const double a = 0.3, b = -0.7;
+  double ux[4], uy[4];
+  for (int k = 0; k < 4; ++k) ux[k] = a * v.x[k], uy[k] = b * v.y[k];
+  EXPECT_NEAR(RzGeometry::volume_divergence<4>(v, ux, uy, volume), 2 * a + b, 1e-14);
+  double ax[4], ay[4];
+  RzGeometry::corner_gradients<4>(v, ax, ay);
+  EXPECT_NEAR(hoop_strain_rate<4>(v, ux, uy, ax, ay, RzGeometry::area<4>(v), volume), a, 1e-14);
+  double cv[4];
+  RzGeometry::corner_volumes<4>(v, cv);
+  EXPECT_NEAR(cv[0] + cv[1] + cv[2] + cv[3], volume, 1e-15);
+}
+
+// A ring zone r in [1, 1.1], z in [0, 0.1] expanding uniformly, v_r = a r, v_z = 0 (the points
+// move on the exact path r(t) = r0 e^(a t)): D_rr = D_thth = a, D_zz = 0, so the hypo-elastic
+// deviator grows as S_rr = S_thth = 2 mu a t / 3, S_zz = -4 mu a t / 3 (sigma_eq = 2 mu a t)
+// until sigma_eq reaches Y, where the radial return holds it.
+TEST(Rz, HoopStressOfAUniformlyExpandingRingIsTheExactElasticOne) {
+  const double mu = 3.0, a = 0.2, yield = 0.9, dt = 1e-3;
+  Deviator s;
+  double t = 0, plastic = 0;
+  const double r0[4] = {1.0, 1.1, 1.1, 1.0}, z0[4] = {0.0, 0.0, 0.1, 0.1};
+  for (int step = 0; step < 1000; ++step) {
+    // The half-step geometry and velocity of the zone.
+    ZoneVertices v;
+    v.n = 4;
+    double ux[4], uy[4], ax[4], ay[4];
+    for (int k = 0; k < 4; ++k) {
+      v.x[k] = r0[k] * std::exp(a * (t + 0.5 * dt));
+      v.y[k] = z0[k];
+      ux[k] = a * v.x[k];
+      uy[k] = 0;
+    }
+    RzGeometry::corner_gradients<4>(v, ax, ay);
+    const double area = RzGeometry::area<4>(v);
+    const VelocityGradient L = RzGeometry::velocity_gradient(4, ux, uy, ax, ay, area);
+    s = advance_stress(false, mu, s, s, L, dt);
+    add_hoop_stress_rate(mu, hoop_strain_rate<4>(v, ux, uy, ax, ay, area, RzGeometry::volume<4>(v)), dt, s);
+    plastic += radial_return(yield, 0.0, plastic, mu, s);
+    t += dt;
+    const double elastic = 2.0 * mu * a * t / 3.0;
+    const double thth = -(s.xx + s.yy);
+    if (2.0 * mu * a * t <= yield * (1 - 1e-9)) {
+      ASSERT_NEAR(thth, elastic, 1e-12 * elastic) << "t = " << t;
+      ASSERT_NEAR(s.xx, elastic, 1e-12 * elastic);
+      ASSERT_NEAR(s.yy, -2 * elastic, 1e-12 * elastic);
+      ASSERT_EQ(plastic, 0.0);
+    } else {
+      // On the yield surface: the same direction, sigma_eq = Y (S_thth = Y / 3).
+      ASSERT_NEAR(thth, yield / 3.0, 1e-12) << "t = " << t;
+      ASSERT_NEAR(s.yy, -2 * yield / 3.0, 1e-12);
+    }
+  }
+  EXPECT_GT(plastic, 0.0);  // the run went past first yield (2 mu a t = Y at t = 0.75)
+}
+
+}  // namespace stagger

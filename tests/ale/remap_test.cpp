@@ -240,6 +240,24 @@ TEST(Remap, LinearFieldsAreReproducedExactly) {
     // vertex average, which is not the centroid).
     for (Index z = 0; z < m.num_zones(); ++z) {
       a.zone_mass[z] = linear_integral(m, m.x, m.y, z, 2, 1, -0.5);
+      // Corner masses: the density's integral over each median-mesh corner.
+      const Index cb = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - cb;
+      double gx = 0, gy = 0;
+      for (Index k = 0; k < n; ++k) gx += m.x[m.corner_point[cb + k]] / n, gy += m.y[m.corner_point[cb + k]] / n;
+      for (Index k = 0; k < n; ++k) {
+        const Index p = m.corner_point[cb + k], pn = m.corner_point[cb + (k + 1) % n],
+                    pp = m.corner_point[cb + (k + n - 1) % n];
+        const double qx[4] = {m.x[p], 0.5 * (m.x[p] + m.x[pn]), gx, 0.5 * (m.x[p] + m.x[pp])};
+        const double qy[4] = {m.y[p], 0.5 * (m.y[p] + m.y[pn]), gy, 0.5 * (m.y[p] + m.y[pp])};
+        double ia = 0, ib = 0;  // integrals of 2 + x - y/2 (a) and 1.5 (b) by two triangles
+        for (int t = 1; t < 3; ++t) {
+          const double ar = 0.5 * ((qx[t] - qx[0]) * (qy[t + 1] - qy[0]) - (qx[t + 1] - qx[0]) * (qy[t] - qy[0]));
+          ia += ar * (2 + (qx[0] + qx[t] + qx[t + 1]) / 3 - 0.5 * (qy[0] + qy[t] + qy[t + 1]) / 3);
+          ib += ar * 1.5;
+        }
+        a.corner_mass[cb + k] = ia;
+        b.corner_mass[cb + k] = ib;
+      }
       b.e[z] = linear_integral(m, m.x, m.y, z, 1, 2, 3) / polygon_area(m, m.x, m.y, z);
       b.zone_mass[z] = 1.5 * polygon_area(m, m.x, m.y, z);
     }

@@ -123,7 +123,7 @@ struct AleOptions {
   AleMode mode = AleMode::lagrangian;
   AleRezone rezone = AleRezone::winslow;
   double relaxation = 0.5;     ///< rezone: fraction of the way from the Lagrangian to the smoothed mesh
-  int rezone_iterations = 2;   ///< rezone: smoothing sweeps per remap
+  int rezone_iterations = 1;   ///< rezone: smoothing sweeps per remap
   double corner_angle = 0.5;   ///< rezone: boundary points slide where the boundary turns less (degrees)
   double max_move = 0.5;       ///< rezone: largest move of a point per remap, in its shortest edges
   int remap_every = 1;         ///< remap after every N-th cycle

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "ale/remap.hpp"
+#include "ale/rezone.hpp"
 #include "hydro/boundary.hpp"
 #include "hydro/kernels/strength.hpp"
 #include "hydro/state_fields.hpp"
@@ -21,7 +22,7 @@ namespace {
 
 // A point's displacement per remap sub-step stays below this fraction of its shortest edge,
 // so that each swept region lies within the zones next to its face.
-constexpr double kSubstepFraction = 0.4;
+constexpr double kSubstepFraction = 0.25;
 constexpr int kMaxSubsteps = 64;
 
 class AleRemap final : public Remap {
@@ -38,7 +39,10 @@ class AleRemap final : public Remap {
   Simulation::Impl& s_;
   std::vector<int> zone_material_;
   Remapper remapper_;
-  std::vector<char> lagrangian_;      // eulerian mode: points that follow the material
+  std::vector<char> lagrangian_;   // eulerian mode: points that follow the material
+  RezoneConstraints constraints_;  // ale mode
+  RezoneOptions rezone_options_;
+  RezoneWorkspace workspace_;
   std::vector<StateArray> specific_;  // the zone fields carried per unit mass
   std::vector<double> xn_, yn_, xa_, ya_, xb_, yb_, kinetic_, zone_mass_old_, dE_;
 };
@@ -78,6 +82,16 @@ AleRemap::AleRemap(Simulation::Impl& s)
     if (bc.kind == BoundaryKind::wall) continue;
     for (Index p : m.tags[m.tag_index(bc.tag)].points) lagrangian_[p] = 1;
   }
+  if (s.problem.ale.mode == AleMode::ale) {
+    const AleOptions& o = s.problem.ale;
+    const std::vector<Index> material(zone_material_.begin(), zone_material_.end());
+    constraints_ = make_rezone_constraints(m, s.problem.boundaries, material);
+    rezone_options_.method = o.rezone == AleRezone::winslow ? RezoneMethod::winslow : RezoneMethod::reference_jacobian;
+    rezone_options_.relaxation = o.relaxation;
+    rezone_options_.iterations = o.rezone_iterations;
+    rezone_options_.corner_angle_degrees = o.corner_angle;
+    rezone_options_.max_move = o.max_move;
+  }
   for (auto* v : {&xn_, &yn_, &xa_, &ya_, &xb_, &yb_, &kinetic_}) v->assign(np, 0.0);
   zone_mass_old_.assign(nz, 0.0);
   dE_.assign(nz, 0.0);
@@ -86,14 +100,22 @@ AleRemap::AleRemap(Simulation::Impl& s)
 bool AleRemap::due() const {
   const AleOptions& o = s_.problem.ale;
   if (o.mode == AleMode::eulerian) return true;
-  // By the cycle number alone, so that a restart remaps where the uninterrupted run does.
-  return s_.cycle % o.remap_every == 0;
+  // By the cycle number and the state alone, so that a restart remaps where the
+  // uninterrupted run does.
+  if (s_.cycle % o.remap_every == 0) return true;
+  if (o.quality_trigger <= 0) return false;
+  const Mesh& m = s_.mesh();
+  return mesh_quality_summary(m, QualityMeasure::reference_shape, s_.x, s_.y, m.x, m.y).worst < o.quality_trigger;
 }
 
 void AleRemap::new_positions() {
   const Mesh& m = s_.mesh();
   const Index np = m.num_points();
-  // Eulerian (and, until the rezone lands, ALE): back to the initial mesh where allowed.
+  if (s_.problem.ale.mode == AleMode::ale) {
+    rezone(m, constraints_, rezone_options_, s_.x, s_.y, m.x, m.y, xn_, yn_, workspace_);
+    return;
+  }
+  // Eulerian: back to the initial mesh where the point may leave the material.
   for (Index p = 0; p < np; ++p) {
     xn_[p] = lagrangian_[p] ? s_.x[p] : m.x[p];
     yn_[p] = lagrangian_[p] ? s_.y[p] : m.y[p];

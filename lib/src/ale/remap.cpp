@@ -152,11 +152,12 @@ Remapper::Remapper(const Mesh& mesh, std::span<const int> zone_material) : mesh_
     point_nbr_.insert(point_nbr_.end(), list.begin(), list.end());
     point_nbr_begin_[p + 1] = static_cast<Index>(point_nbr_.size());
   }
-  for (auto* v : {&area_, &cx_, &cy_, &rho_, &grx_, &gry_, &qgx_, &qgy_, &dm_zone_}) v->assign(nz, 0.0);
+  for (auto* v : {&area_, &cx_, &cy_, &rho_, &grx_, &gry_, &rlo_, &rhi_, &qgx_, &qgy_, &dm_zone_}) v->assign(nz, 0.0);
   zlsq_.assign(3 * static_cast<std::size_t>(nz), 0.0);
   plsq_.assign(3 * static_cast<std::size_t>(np), 0.0);
   for (auto* v : {&vgx_, &vgy_, &wgx_, &wgy_, &dm_point_, &dpx_, &dpy_, &dke_}) v->assign(np, 0.0);
   dm_corner_.assign(nc, 0.0);
+  for (auto* v : {&crho_, &ccx_, &ccy_, &cgx_, &cgy_}) v->assign(nc, 0.0);
   zone_touched_.assign(nz, 0);
   point_touched_.assign(np, 0);
 }
@@ -302,7 +303,7 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
     }
     pseudo_inverse(a, b, c, &plsq_[3 * static_cast<std::size_t>(p)]);
   }
-  zone_gradients(rho_.data(), limiter, grx_.data(), gry_.data(), nullptr, nullptr);
+  zone_gradients(rho_.data(), limiter, grx_.data(), gry_.data(), rlo_.data(), rhi_.data());
   qgx_.resize(nf * nz), qgy_.resize(nf * nz), qmin_.resize(nf * nz), qmax_.resize(nf * nz), dq_.assign(nf * nz, 0.0);
   for (std::size_t i = 0; i < nf; ++i)
     zone_gradients(f.specific[i], limiter, qgx_.data() + i * nz, qgy_.data() + i * nz, qmin_.data() + i * nz,
@@ -318,12 +319,61 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
 
   for (Index z = 0; z < nz; ++z) {
     const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
+    double gox = 0, goy = 0;
+    for (Index k = 0; k < n; ++k) gox += xo[m.corner_point[b + k]], goy += yo[m.corner_point[b + k]];
+    gox /= n, goy /= n;
+    // The old corners (x_k, mid(k, k+1), centre, mid(k-1, k)): their own densities m_c / A_c
+    // feed the centre-segment fluxes, so that a corner never gives more than it holds.
+    double* corner_rho = crho_.data() + b;
+    double* corner_cx = ccx_.data() + b;
+    double* corner_cy = ccy_.data() + b;
+    for (Index k = 0; k < n; ++k) {
+      const Index p = m.corner_point[b + k], pn = m.corner_point[b + (k + 1) % n],
+                  pp = m.corner_point[b + (k + n - 1) % n];
+      const double qx[4] = {xo[p], 0.5 * (xo[p] + xo[pn]), gox, 0.5 * (xo[p] + xo[pp])};
+      const double qy[4] = {yo[p], 0.5 * (yo[p] + yo[pn]), goy, 0.5 * (yo[p] + yo[pp])};
+      const Swept a = swept_quad(qx[0], qy[0], qx[1], qy[1], qx[2], qy[2], qx[3], qy[3], 0.0, 0.0);
+      const double r = a.area > 0 ? f.corner_mass[b + k] / a.area : rho_[z];
+      corner_rho[k] = r;
+      corner_cx[k] = a.area > 0 ? a.mx / a.area : gox;
+      corner_cy[k] = a.area > 0 ? a.my / a.area : goy;
+    }
+  }
+  // The corner gradient: the zone's limited one, scaled where needed so that the corner's
+  // reconstruction stays non-negative at its vertices.
+  for (Index z = 0; z < nz; ++z) {
+    const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
+    double gox = 0, goy = 0;
+    for (Index k = 0; k < n; ++k) gox += xo[m.corner_point[b + k]], goy += yo[m.corner_point[b + k]];
+    gox /= n, goy /= n;
+    for (Index k = 0; k < n; ++k) {
+      const Index c = b + k, cn = b + (k + 1) % n, cp = b + (k + n - 1) % n;
+      const double r = crho_[c];
+      const Index p = m.corner_point[c], pn = m.corner_point[cn], pp = m.corner_point[cp];
+      const double qx[4] = {xo[p], 0.5 * (xo[p] + xo[pn]), gox, 0.5 * (xo[p] + xo[pp])};
+      const double qy[4] = {yo[p], 0.5 * (yo[p] + yo[pn]), goy, 0.5 * (yo[p] + yo[pp])};
+      double phi = 1.0;
+      for (int i = 0; i < 4; ++i) {
+        const double d = grx_[z] * (qx[i] - ccx_[c]) + gry_[z] * (qy[i] - ccy_[c]);
+        if (d < 0 && r + d < 0) phi = std::min(phi, r / -d);  // never negative
+      }
+      phi = std::max(phi, 0.0);
+      cgx_[c] = phi * grx_[z], cgy_[c] = phi * gry_[z];
+    }
+  }
+  for (Index z = 0; z < nz; ++z) {
+    const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
     double gox = 0, goy = 0, gnx = 0, gny = 0;
     for (Index k = 0; k < n; ++k) {
       const Index p = m.corner_point[b + k];
       gox += xo[p], goy += yo[p], gnx += xn[p], gny += yn[p];
     }
     gox /= n, goy /= n, gnx /= n, gny /= n;
+    const double* corner_rho = crho_.data() + b;
+    const double* corner_cx = ccx_.data() + b;
+    const double* corner_cy = ccy_.data() + b;
+    const double* corner_gx = cgx_.data() + b;
+    const double* corner_gy = cgy_.data() + b;
     for (Index k = 0; k < n; ++k) {
       const Index kp = (k + 1 == n) ? 0 : k + 1;
       const Index c = b + k, c1 = b + kp;
@@ -342,9 +392,18 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
           const Swept s0 = swept_quad(ax0, ay0, ax1, ay1, bx1, by1, bx0, by0, 0.0, 0.0);
           if (s0.area == 0 && s0.mx == 0 && s0.my == 0) continue;
           const Index d = s0.area > 0 ? nb : z;
-          const double mx = s0.mx - cx_[d] * s0.area, my = s0.my - cy_[d] * s0.area;
-          const double flux = rho_[d] * s0.area + grx_[d] * mx + gry_[d] * my;
           const Index left = h == 0 ? c : c1, right = h == 0 ? side_corner0_[c] : side_corner1_[c];
+          // The donor corner's density and (zone) gradient: a corner never gives more than
+          // it holds, and corner densities stay tied to their neighbours'.
+          const Index dc = s0.area > 0 ? right : left;
+          const double mx = s0.mx - ccx_[dc] * s0.area, my = s0.my - ccy_[dc] * s0.area;
+          double flux = crho_[dc] * s0.area + cgx_[dc] * mx + cgy_[dc] * my;
+          // Its mean density within the donor zone's bounds (corner densities may lie
+          // outside them): no new extrema.
+          if (s0.simple && limiter) {
+            const double lo = s0.area * rlo_[d], hi = s0.area * rhi_[d];
+            flux = std::clamp(flux, std::min(lo, hi), std::max(lo, hi));
+          }
           dm_corner_[left] += flux, dm_corner_[right] -= flux;
           dm_zone_[z] += flux, dm_zone_[nb] -= flux;
           zone_touched_[z] = zone_touched_[nb] = 1;
@@ -352,7 +411,8 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
             const double qd = f.specific[i][d];
             if (!std::isfinite(qd)) continue;
             const std::size_t id = i * nz + d;
-            double fq = qd * flux + rho_[d] * (qgx_[id] * mx + qgy_[id] * my);
+            const double mqx = s0.mx - cx_[d] * s0.area, mqy = s0.my - cy_[d] * s0.area;
+            double fq = qd * flux + crho_[dc] * (qgx_[id] * mqx + qgy_[id] * mqy);
             // The flux's mean value stays within the donor's neighbourhood bounds (a jump
             // of density inside the swept region could push it out): a repair that keeps
             // conservation, since the same flux leaves one zone and enters the other.
@@ -368,14 +428,16 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
       // Centre segment mid(k, k+1) -> centre: corner c on the left, corner c1 on the right.
       const Swept s = swept_quad(mox, moy, mnx, mny, gnx, gny, gox, goy, 0.0, 0.0);
       if (s.area == 0 && s.mx == 0 && s.my == 0) continue;
-      const double flux = rho_[z] * s.area + grx_[z] * (s.mx - cx_[z] * s.area) + gry_[z] * (s.my - cy_[z] * s.area);
+      const Index kd = s.area > 0 ? kp : k;  // the donor corner
+      const double flux = corner_rho[kd] * s.area + corner_gx[kd] * (s.mx - corner_cx[kd] * s.area) +
+                          corner_gy[kd] * (s.my - corner_cy[kd] * s.area);
       dm_corner_[c] += flux, dm_corner_[c1] -= flux;
       const Index pd = s.area > 0 ? pb : pa;
       const double mx = s.mx - xo[pd] * s.area, my = s.my - yo[pd] * s.area;
       const double u = f.vx[pd], w = f.vy[pd];
       const double du = vgx_[pd] * mx + vgy_[pd] * my, dw = wgx_[pd] * mx + wgy_[pd] * my;
-      const double px = u * flux + rho_[z] * du, py = w * flux + rho_[z] * dw;
-      const double ke = 0.5 * (u * u + w * w) * flux + rho_[z] * (u * du + w * dw);
+      const double px = u * flux + corner_rho[kd] * du, py = w * flux + corner_rho[kd] * dw;
+      const double ke = 0.5 * (u * u + w * w) * flux + corner_rho[kd] * (u * du + w * dw);
       dm_point_[pa] += flux, dm_point_[pb] -= flux;
       dpx_[pa] += px, dpx_[pb] -= px;
       dpy_[pa] += py, dpy_[pb] -= py;
@@ -398,7 +460,37 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
   for (Index c = 0; c < nc; ++c) {
     if (dm_corner_[c] == 0) continue;
     f.corner_mass[c] += dm_corner_[c];
-    if (!(f.corner_mass[c] > 0)) fail_mass(m, "corner of zone", m.corner_zone[c], f.corner_mass[c]);
+  }
+  // Repair: a zone whose corner kept less than a hundredth of its share (subcell densities
+  // can drift apart where the mesh and the flow shear; a swept region then takes more than
+  // the corner holds) gets its corner masses reset to its new mass shared by new corner area.
+  // The zone mass stays; the points' masses change by the difference, their momentum does
+  // not, and the kinetic energy this changes is part of the fix-up.
+  for (Index z = 0; z < nz; ++z) {
+    const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
+    bool bad = false;
+    for (Index k = 0; k < n; ++k) bad = bad || !(f.corner_mass[b + k] > 0.01 * f.zone_mass[z] / n);
+    if (!bad) continue;
+    double gx = 0, gy = 0;
+    for (Index k = 0; k < n; ++k) gx += xn[m.corner_point[b + k]] / n, gy += yn[m.corner_point[b + k]] / n;
+    double areas[16], total = 0;
+    for (Index k = 0; k < n; ++k) {
+      const Index p = m.corner_point[b + k], pn = m.corner_point[b + (k + 1) % n],
+                  pp = m.corner_point[b + (k + n - 1) % n];
+      areas[k] = swept_quad(xn[p], yn[p], 0.5 * (xn[p] + xn[pn]), 0.5 * (yn[p] + yn[pn]), gx, gy,
+                            0.5 * (xn[p] + xn[pp]), 0.5 * (yn[p] + yn[pp]), 0.0, 0.0)
+                     .area;
+      total += areas[k];
+    }
+    for (Index k = 0; k < n; ++k) {
+      const double share = areas[k] > 0 && total > 0 ? f.zone_mass[z] * (areas[k] / total) : 0.0;
+      if (!(share > 0)) fail_mass(m, "corner of zone", z, share);
+      const Index p = m.corner_point[b + k];
+      dm_point_[p] += share - f.corner_mass[b + k];
+      point_touched_[p] = 1;
+      f.corner_mass[b + k] = share;
+    }
+    ++repaired_;
   }
   for (Index p = 0; p < np; ++p) {
     const double m0 = f.point_mass[p], u = f.vx[p], w = f.vy[p];

@@ -46,6 +46,8 @@ class Remapper {
   int substeps(const double* xo, const double* yo, const double* xn, const double* yn, double fraction) const;
 
   const Mesh& mesh() const { return mesh_; }
+  // Zones whose corner masses were reset so far (see remap()).
+  long repaired_zones() const { return repaired_; }
 
  private:
   void zone_gradients(const double* q, bool limiter, double* gx, double* gy, double* lo, double* hi);
@@ -60,11 +62,13 @@ class Remapper {
   std::vector<Index> point_nbr_begin_, point_nbr_;  // points sharing an edge with p
   // Workspace.
   const double *xo_ = nullptr, *yo_ = nullptr;  // old positions during remap()
-  std::vector<double> area_, cx_, cy_, rho_, grx_, gry_;
+  std::vector<double> area_, cx_, cy_, rho_, grx_, gry_, rlo_, rhi_;
   std::vector<double> zlsq_, plsq_;  // per zone / point: the 2x2 pseudo-inverse (xx, xy, yy)
   std::vector<double> qgx_, qgy_, qmin_, qmax_, vgx_, vgy_, wgx_, wgy_;
+  std::vector<double> crho_, ccx_, ccy_, cgx_, cgy_;  // per corner: density, centroid, gradient
   std::vector<double> dm_zone_, dm_corner_, dm_point_, dpx_, dpy_, dke_, dq_;
   std::vector<char> zone_touched_, point_touched_;
+  long repaired_ = 0;
 };
 
 }  // namespace stagger

@@ -16,8 +16,9 @@ constexpr double kNever = std::numeric_limits<double>::infinity();
 
 // Order: points, zones, corners; the dumped arrays of each entity in the order of the dumps.
 // Checkpointed: what the next cycle reads and the set-up cannot recompute (x, v, e, q, the
-// lagged corner forces, stress, plastic strain, burn fraction). Remapped: what a remap must
-// carry to the new mesh; the rest is recomputed from it (recompute_state) or is scratch.
+// lagged corner forces, stress, plastic strain, burn fraction; the masses, which an ALE
+// remap changes). Remapped: what a remap must carry to the new mesh; the rest is recomputed
+// from it (recompute_state) or is scratch.
 const std::array kFields = {
     // Points.
     StateField{"x", &I::x, Entity::point, Presence::always, kC},
@@ -32,7 +33,7 @@ const std::array kFields = {
     StateField{"vy_new", &I::vy_new, Entity::point, Presence::always},
     StateField{"vx_star", &I::vx_star, Entity::point, Presence::always},
     StateField{"vy_star", &I::vy_star, Entity::point, Presence::always},
-    StateField{"point_mass", &I::point_mass, Entity::point, Presence::always, kR},
+    StateField{"point_mass", &I::point_mass, Entity::point, Presence::always, kC | kR},
     StateField{"ext_fx", &I::ext_fx, Entity::point, Presence::external},
     StateField{"ext_fy", &I::ext_fy, Entity::point, Presence::external},
     StateField{"src_fx", &I::src_fx, Entity::point, Presence::momentum_source},
@@ -40,7 +41,7 @@ const std::array kFields = {
     StateField{"axis_ax", &I::axis_ax, Entity::point, Presence::rz, kC},
     StateField{"axis_ay", &I::axis_ay, Entity::point, Presence::rz, kC},
     // Zones.
-    StateField{"zone_mass", &I::zone_mass, Entity::zone, Presence::always, kR},
+    StateField{"zone_mass", &I::zone_mass, Entity::zone, Presence::always, kC | kR},
     StateField{"area", &I::area, Entity::zone, Presence::always},
     StateField{"rho", &I::rho, Entity::zone, Presence::always, kD, 0.0, nullptr, "density"},
     StateField{"p", &I::p, Entity::zone, Presence::always, kD, 0.0, nullptr, "pressure"},
@@ -79,7 +80,7 @@ const std::array kFields = {
     StateField{"corner_fy", &I::corner_fy, Entity::corner, Presence::always, kC},
     StateField{"corner_scratch", &I::corner_scratch, Entity::corner, Presence::momentum_source},
     // Constant subzonal masses (set-up; a remap carries them like the zone masses).
-    StateField{"corner_mass", &I::corner_mass, Entity::corner, Presence::subzonal, kR},
+    StateField{"corner_mass", &I::corner_mass, Entity::corner, Presence::subzonal, kC | kR},
     // Median-mesh corner masses: constant in the Lagrangian phase, carried by the ALE remap.
     StateField{"ale_corner_mass", &I::ale_corner_mass, Entity::corner, Presence::ale, kC | kR},
     StateField{"corner_area_mass", &I::corner_area_mass, Entity::corner, Presence::rz},

@@ -481,7 +481,7 @@ bool Simulation::Impl::try_step(double dt) {
 }
 
 // Remedies for a tangled step that the scene has not already taken (docs/algorithm.md §9).
-static std::string tangling_remedies(const HydroOptions& o) {
+static std::string tangling_remedies(const HydroOptions& o, AleMode ale_mode) {
   std::vector<std::string> tips;
   if (o.hourglass != Hourglass::subzonal_triangles)
     tips.push_back(
@@ -491,6 +491,7 @@ static std::string tangling_remedies(const HydroOptions& o) {
   if (o.cfl > 0.1) tips.push_back("a lower numerics.cfl");
   if (o.viscosity != Viscosity::edge && o.q1 < 2) tips.push_back("a larger numerics.q1");
   tips.push_back("a finer or better-shaped mesh near the zone");
+  if (ale_mode == AleMode::lagrangian) tips.push_back("ale.mode = \"ale\" (rezone and remap, docs/ale.md)");
   std::string text = "try ";
   for (std::size_t i = 0; i < tips.size(); ++i) text += (i == 0 ? "" : i + 1 == tips.size() ? " or " : ", ") + tips[i];
   return text;
@@ -557,7 +558,7 @@ void Simulation::Impl::step(double t_stop) {
         msg << "cycle " << cycle << ", t = " << t << ": "
             << (collective ? collective->point_text(*this, p, crossing_text) : crossing_text(p))
             << " even with dt = " << dt_taken << " after " << attempt << " retries (the mesh is folding against the "
-            << "wall; " << tangling_remedies(o) << ")";
+            << "wall; " << tangling_remedies(o, problem.ale.mode) << ")";
         throw Error(msg.str());
       }
       msg << "cycle " << cycle << ", t = " << t
@@ -569,7 +570,7 @@ void Simulation::Impl::step(double t_stop) {
       } else if (tangled >= 0) {
         msg << describe(tangled);
       }
-      msg << " (the mesh is folding there; " << tangling_remedies(o) << ")";
+      msg << " (the mesh is folding there; " << tangling_remedies(o, problem.ale.mode) << ")";
       throw Error(msg.str());
     }
     dt *= 0.5;

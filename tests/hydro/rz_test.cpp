@@ -82,4 +82,15 @@ TEST(Rz, ANegativeRadiusIsASetUpErrorNamingThePoint) {
   }
 }
 
+TEST(Rz, AleIsRefusedUntilTheRemapIsAxisymmetric) {
+  Problem p = rz_strength_problem(0.01);
+  p.ale.mode = AleMode::ale;
+  try {
+    Simulation sim(std::move(p));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("runs Lagrangian only"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace stagger

@@ -44,6 +44,7 @@ class AleRemap final : public Remap {
   RezoneOptions rezone_options_;
   RezoneWorkspace workspace_;
   std::vector<StateArray> specific_;  // the zone fields carried per unit mass
+  RemapFields fields_;                // kept so that a remap allocates nothing after the first
   std::vector<double> xn_, yn_, xa_, ya_, xb_, yb_, kinetic_, zone_mass_old_, dE_;
 };
 
@@ -123,7 +124,7 @@ void AleRemap::new_positions() {
 }
 
 void AleRemap::remap_once(const double* xo, const double* yo, const double* xn, const double* yn) {
-  RemapFields f;
+  RemapFields& f = fields_;
   f.zone_mass = s_.zone_mass.data();
   f.corner_mass = s_.ale_corner_mass.data();
   f.point_mass = s_.point_mass.data();

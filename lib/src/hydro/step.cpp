@@ -224,8 +224,8 @@ std::int64_t Simulation::Impl::zone_forces(const double* px, const double* py, d
                           dt_half,
                           t_eval,
                           data_or_null(corner_mass)};
-  const ZoneForceOutput out{corner_fx.data(),       corner_fy.data(),       q.data(),
-                            data_or_null(rho_half), data_or_null(c_half),   data_or_null(sxx_half),
+  const ZoneForceOutput out{corner_fx.data(),       corner_fy.data(),      q.data(),
+                            data_or_null(rho_half), data_or_null(c_half),  data_or_null(sxx_half),
                             data_or_null(syy_half), data_or_null(sxy_half)};
   const HydroOptions& o = problem.options;
   std::int64_t failure = kNoFailure;

@@ -62,8 +62,7 @@ inline void weight_rz_corner_forces(Index nc, const Index* corner_point, const d
     double mass = 0, Fx = 0, Fy = 0;
     for (Index j = axis_corner_begin[i]; j < axis_corner_begin[i + 1]; ++j) {
       const Index c = axis_corner[j];
-      const double s =
-          force_radius(px, x, vx, h, axis_ref_a[j]) + force_radius(px, x, vx, h, axis_ref_b[j]);
+      const double s = force_radius(px, x, vx, h, axis_ref_a[j]) + force_radius(px, x, vx, h, axis_ref_b[j]);
       mass += axis_moment[j] / s;
       Fx += fx[c];
       Fy += fy[c];

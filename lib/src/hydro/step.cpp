@@ -281,11 +281,7 @@ void Simulation::Impl::weight_rz_forces(const double* px, double h_position) {
 // External point forces at the half step: applied pressures (boundary work) and momentum
 // sources (source work), on the half-step geometry (docs/algorithm.md §10).
 void Simulation::Impl::external_forces(double t_half) {
-  std::fill(ext_fx.begin(), ext_fx.end(), 0.0);
-  std::fill(ext_fy.begin(), ext_fy.end(), 0.0);
-  add_pressure_forces(*this, x_half, y_half, t_half, ext_fx, ext_fy);
-  if (rz)  // per radian: the planar force times the point's radius
-    for (Index p = 0; p < mesh().num_points(); ++p) ext_fx[p] *= x_half[p], ext_fy[p] *= x_half[p];
+  pressure_forces(*this, x_half, y_half, t_half, ext_fx, ext_fy);
   if (!(problem.sources && problem.sources->momentum)) return;
   std::fill(src_fx.begin(), src_fx.end(), 0.0);
   std::fill(src_fy.begin(), src_fy.end(), 0.0);

@@ -383,6 +383,10 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
   for (Index z = 0; z < nz; ++z) {
     const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
     const double gox = gox_[z], goy = goy_[z];
+    if (grx_[z] == 0 && gry_[z] == 0) {  // nothing to limit (phi = 1)
+      for (Index c = b; c < b + n; ++c) cgx_[c] = grx_[z], cgy_[c] = gry_[z];
+      continue;
+    }
     for (Index k = 0; k < n; ++k) {
       const Index c = b + k, cn = b + (k + 1) % n, cp = b + (k + n - 1) % n;
       const double r = crho_[c];
@@ -506,19 +510,24 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
     }
     return s;
   };
-  const auto active = [&](const Index* begin, const Index* end, const char* flag) {
-    char a = 0;
-    for (const Index* e = begin; e != end; ++e) a |= flag[*e >> 1];
-    return a;
-  };
   Index failed_zone = std::numeric_limits<Index>::max();
 #pragma omp parallel for schedule(static) reduction(min : failed_zone) if (nz > kParallelMin)
   for (Index z = 0; z < nz; ++z) {
     const Index* lb = zone_list_.data() + zone_list_begin_[z];
     const Index* le = zone_list_.data() + zone_list_begin_[z + 1];
     // New zone values: mass plus fluxes, specific quantities from their mass-weighted sums.
-    if (!active(lb, le, flux_active_.data())) continue;
-    const double m0 = f.zone_mass[z], m1 = m0 + sum(lb, le, flux_mass_.data());
+    double dm = 0;
+    char touched = 0;
+    for (const Index* e = lb; e != le; ++e) {
+      const Index s = *e >> 1;
+      touched |= flux_active_[s];
+      if (*e & 1)
+        dm -= flux_mass_[s];
+      else
+        dm += flux_mass_[s];
+    }
+    if (!touched) continue;
+    const double m0 = f.zone_mass[z], m1 = m0 + dm;
     if (!(m1 > 0)) {
       failed_zone = std::min(failed_zone, z);
       continue;
@@ -544,11 +553,21 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
   for (Index p = 0; p < np; ++p) {
     const Index* lb = point_list_.data() + point_list_begin_[p];
     const Index* le = point_list_.data() + point_list_begin_[p + 1];
-    point_touched_[p] = active(lb, le, flux_active_.data() + nc2);
-    dm_point_[p] = sum(lb, le, flux_mass_.data() + nc2);
-    dpx_[p] = sum(lb, le, seg_px_.data());
-    dpy_[p] = sum(lb, le, seg_py_.data());
-    dke_[p] = sum(lb, le, seg_ke_.data());
+    // One pass, four sums, each in the serial order.
+    const double* mass = flux_mass_.data() + nc2;
+    const char* flag = flux_active_.data() + nc2;
+    double sm = 0, sx = 0, sy = 0, sk = 0;
+    char a = 0;
+    for (const Index* e = lb; e != le; ++e) {
+      const Index s = *e >> 1;
+      a |= flag[s];
+      if (*e & 1)
+        sm -= mass[s], sx -= seg_px_[s], sy -= seg_py_[s], sk -= seg_ke_[s];
+      else
+        sm += mass[s], sx += seg_px_[s], sy += seg_py_[s], sk += seg_ke_[s];
+    }
+    point_touched_[p] = a;
+    dm_point_[p] = sm, dpx_[p] = sx, dpy_[p] = sy, dke_[p] = sk;
   }
   // Repair: a zone whose corner kept less than a hundredth of its share (subcell densities
   // can drift apart where the mesh and the flow shear; a swept region then takes more than

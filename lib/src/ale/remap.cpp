@@ -78,8 +78,9 @@ inline void pseudo_inverse(double a, double b, double c, double* out) {
 // Barth-Jespersen factor for a reconstruction that changes the mean q by `delta` at one
 // evaluation point, within [qmin, qmax].
 inline double bj_factor(double q, double delta, double qmin, double qmax) {
-  if (delta > 0) return std::min(1.0, (qmax - q) / delta);
-  if (delta < 0) return std::min(1.0, (qmin - q) / delta);
+  // min(1, room / delta), dividing only when the quotient is below 1 (the same value).
+  if (delta > 0) return qmax - q < delta ? (qmax - q) / delta : 1.0;
+  if (delta < 0) return qmin - q > delta ? (qmin - q) / delta : 1.0;
   return 1.0;
 }
 
@@ -280,32 +281,47 @@ void Remapper::zone_gradients(const double* q, bool limiter, double* gx, double*
   }
 }
 
-void Remapper::point_gradients(const double* q, bool limiter, double* gx, double* gy) {
+// Both velocity components in one pass over the neighbours (each component's arithmetic as
+// for a single field).
+void Remapper::point_gradients(const double* qa, const double* qb, bool limiter, double* gax, double* gay, double* gbx,
+                               double* gby) {
   const Index np = mesh_.num_points();
 #pragma omp parallel for schedule(static) if (np > kParallelMin)
   for (Index p = 0; p < np; ++p) {
-    double bx = 0, by = 0, qmin = q[p], qmax = q[p];
+    const double* q[2] = {qa, qb};
+    double bx[2] = {0, 0}, by[2] = {0, 0}, qmin[2] = {qa[p], qb[p]}, qmax[2] = {qa[p], qb[p]};
     for (Index k = point_nbr_begin_[p]; k < point_nbr_begin_[p + 1]; ++k) {
       const Index n = point_nbr_[k];
-      const double dq = q[n] - q[p];
-      bx += (xo_[n] - xo_[p]) * dq;
-      by += (yo_[n] - yo_[p]) * dq;
-      qmin = std::min(qmin, q[n]);
-      qmax = std::max(qmax, q[n]);
+      const double dx = xo_[n] - xo_[p], dy = yo_[n] - yo_[p];
+      for (int i = 0; i < 2; ++i) {
+        const double dq = q[i][n] - q[i][p];
+        bx[i] += dx * dq;
+        by[i] += dy * dq;
+        qmin[i] = std::min(qmin[i], q[i][n]);
+        qmax[i] = std::max(qmax[i], q[i][n]);
+      }
     }
     const double* pinv = &plsq_[3 * static_cast<std::size_t>(p)];
-    double ax = pinv[0] * bx + pinv[1] * by, ay = pinv[1] * bx + pinv[2] * by;
-    if (limiter && (ax != 0 || ay != 0)) {
-      double phi = 1.0;
+    double ax[2], ay[2], phi[2] = {1.0, 1.0};
+    bool limit[2];
+    for (int i = 0; i < 2; ++i) {
+      ax[i] = pinv[0] * bx[i] + pinv[1] * by[i], ay[i] = pinv[1] * bx[i] + pinv[2] * by[i];
+      limit[i] = limiter && (ax[i] != 0 || ay[i] != 0);
+    }
+    if (limit[0] || limit[1]) {
       for (Index k = point_nbr_begin_[p]; k < point_nbr_begin_[p + 1]; ++k) {
         const Index n = point_nbr_[k];
         const double mx = 0.5 * (xo_[n] - xo_[p]), my = 0.5 * (yo_[n] - yo_[p]);
-        phi = std::min(phi, bj_factor(q[p], ax * mx + ay * my, qmin, qmax));
+        for (int i = 0; i < 2; ++i)
+          if (limit[i]) phi[i] = std::min(phi[i], bj_factor(q[i][p], ax[i] * mx + ay[i] * my, qmin[i], qmax[i]));
       }
-      phi = std::max(phi, 0.0);
-      ax *= phi, ay *= phi;
     }
-    gx[p] = ax, gy[p] = ay;
+    for (int i = 0; i < 2; ++i)
+      if (limit[i]) {
+        phi[i] = std::max(phi[i], 0.0);
+        ax[i] *= phi[i], ay[i] *= phi[i];
+      }
+    gax[p] = ax[0], gay[p] = ay[0], gbx[p] = ax[1], gby[p] = ay[1];
   }
 }
 
@@ -374,8 +390,7 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
   for (std::size_t i = 0; i < nf; ++i)
     zone_gradients(f.specific[i], limiter, qgx_.data() + i * nz, qgy_.data() + i * nz, qmin_.data() + i * nz,
                    qmax_.data() + i * nz);
-  point_gradients(f.vx, limiter, vgx_.data(), vgy_.data());
-  point_gradients(f.vy, limiter, wgx_.data(), wgy_.data());
+  point_gradients(f.vx, f.vy, limiter, vgx_.data(), vgy_.data(), wgx_.data(), wgy_.data());
 
   // The corner gradient: the zone's limited one, scaled where needed so that the corner's
   // reconstruction stays non-negative at its vertices.

@@ -51,7 +51,8 @@ class Remapper {
 
  private:
   void zone_gradients(const double* q, bool limiter, double* gx, double* gy, double* lo, double* hi);
-  void point_gradients(const double* q, bool limiter, double* gx, double* gy);
+  void point_gradients(const double* qa, const double* qb, bool limiter, double* gax, double* gay, double* gbx,
+                       double* gby);
 
   const Mesh& mesh_;
   std::vector<Index> side_zone_;     // per corner: the zone across the corner's side, -1 if none

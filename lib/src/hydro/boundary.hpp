@@ -25,6 +25,11 @@ void pressure_forces(const Simulation::Impl& s, std::span<const double> x, std::
 // edge, or through the continuation of an open wall end, by more than round-off; -1 if none.
 Index find_wall_crossing(const Simulation::Impl& s, double dt);
 
+// The same answer as find_wall_crossing, for the step being taken: only the points whose step
+// is longer than their wall clearance budget are tested (WallClearance, walls.hpp). Its
+// budgets assume the step is accepted; a rejected step must invalidate them (recompute_state).
+Index step_wall_crossing(Simulation::Impl& s, double dt);
+
 // What find_wall_crossing found for point p: the point, its path and the wall; empty if p
 // does not cross one.
 std::string describe_wall_crossing(const Simulation::Impl& s, Index p, double dt);

@@ -96,6 +96,7 @@ struct Simulation::Impl {
   std::vector<PressureEdge> pressure_edges;
   std::vector<WallEdge> wall_edges, wall_rays;  // walls fixed in space (boundary.cpp)
   WallGrid wall_grid;
+  WallClearance wall_clearance;        // per-point budgets of the wall check (changes every step)
   std::vector<Index> external_points;  // points with external forces (pressure, sources)
   std::vector<double> ext_fx, ext_fy;  // applied-pressure force per point (when used)
   std::vector<double> src_fx, src_fy;  // momentum-source force per point (when used)

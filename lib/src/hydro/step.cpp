@@ -150,6 +150,7 @@ DtChoice agreed(const Simulation::Impl& s, DtChoice choice) {
 }  // namespace
 
 void Simulation::Impl::recompute_state() {
+  wall_clearance.valid = false;  // the points moved (restore, remap) or went back (retry)
   DtChoice best;
   std::int64_t failure = kNoFailure;
   const bool quads = all_quads;
@@ -458,7 +459,7 @@ bool Simulation::Impl::try_step(double dt) {
     throw_zone_failure(*this, failure, "at the end of the step");
   }
   // No point through a wall (docs/algorithm.md §10): retried like a tangled zone.
-  Index crossing = find_wall_crossing(*this, dt);
+  Index crossing = step_wall_crossing(*this, dt);
   if (collective) crossing = collective->min_point(*this, crossing);  // every rank retries alike
   if (crossing >= 0) {
     have_previous_forces = false;

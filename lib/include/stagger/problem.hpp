@@ -112,8 +112,9 @@ struct HydroOptions {
 /// How the mesh moves (a scene's [ale]; docs/ale.md): with the material (Lagrangian), rezoned
 /// and remapped (ALE), or back to the initial mesh after every step (Eulerian).
 enum class AleMode { lagrangian, ale, eulerian };
-/// The rezone of ale.mode = "ale" (docs/ale.md, "Rezone").
-enum class AleRezone { winslow, reference_jacobian };
+/// The rezone of ale.mode = "ale" (docs/ale.md, "Rezone"): Winslow with the initial mesh as
+/// logical space, towards the initial corner shapes, or Winslow with Knupp's regular layouts.
+enum class AleRezone { winslow, reference_jacobian, winslow_regular };
 /// The limiter of the remap's piecewise-linear reconstruction.
 enum class AleLimiter { barth_jespersen, none };
 

@@ -86,8 +86,11 @@ AleRemap::AleRemap(Simulation::Impl& s)
   if (s.problem.ale.mode == AleMode::ale) {
     const AleOptions& o = s.problem.ale;
     const std::vector<Index> material(zone_material_.begin(), zone_material_.end());
-    constraints_ = make_rezone_constraints(m, s.problem.boundaries, material);
-    rezone_options_.method = o.rezone == AleRezone::winslow ? RezoneMethod::winslow : RezoneMethod::reference_jacobian;
+    constraints_ = make_rezone_constraints(
+        m, s.problem.boundaries, material,
+        o.rezone == AleRezone::winslow_regular ? WinslowLayout::regular : WinslowLayout::reference);
+    rezone_options_.method =
+        o.rezone == AleRezone::reference_jacobian ? RezoneMethod::reference_jacobian : RezoneMethod::winslow;
     rezone_options_.relaxation = o.relaxation;
     rezone_options_.iterations = o.rezone_iterations;
     rezone_options_.corner_angle_degrees = o.corner_angle;

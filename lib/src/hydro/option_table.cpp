@@ -313,8 +313,9 @@ const OptionTable<AleOptions>& ale_option_table() {
           choice<&A::mode>("mode", {"lagrangian", "ale", "eulerian"},
                            "mesh motion: with the material, rezoned and remapped, or back to the initial mesh "
                            "after every step (docs/ale.md)"),
-          choice<&A::rezone>("rezone", {"winslow", "reference_jacobian"},
-                             "rezone of mode \"ale\": Winslow smoothing or towards the initial zone shapes"),
+          choice<&A::rezone>("rezone", {"winslow", "reference_jacobian", "winslow_regular"},
+                             "rezone of mode \"ale\": Winslow smoothing with the initial mesh as logical space, "
+                             "towards the initial zone shapes, or Winslow with regular local layouts"),
           number<&A::relaxation>("relaxation", {0, 1, false, false}, "-",
                                  "rezone: how far from the Lagrangian towards the smoothed mesh; 0: Lagrangian"),
           integer<&A::rezone_iterations>("rezone_iterations", {0, 1000, false, false}, "-",

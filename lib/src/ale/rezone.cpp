@@ -481,7 +481,8 @@ RezoneConstraints make_rezone_constraints(const Mesh& mesh, std::span<const Boun
         }
         rc.stencil_id[p] = length > 0 ? weights_of(known_reference, offsets) : -1;
       }
-      if (rc.stencil_id[p] >= 0) rc.stencil_points.insert(rc.stencil_points.end(), fan_points.begin(), fan_points.end());
+      if (rc.stencil_id[p] >= 0)
+        rc.stencil_points.insert(rc.stencil_points.end(), fan_points.begin(), fan_points.end());
     }
     rc.stencil_begin.push_back(static_cast<Index>(rc.stencil_points.size()));
   }

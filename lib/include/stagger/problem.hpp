@@ -123,12 +123,12 @@ enum class AleLimiter { barth_jespersen, none };
 struct AleOptions {
   AleMode mode = AleMode::lagrangian;
   AleRezone rezone = AleRezone::winslow;
-  double relaxation = 0.5;     ///< rezone: fraction of the way from the Lagrangian to the smoothed mesh
-  int rezone_iterations = 1;   ///< rezone: smoothing sweeps per remap
-  double corner_angle = 0.5;   ///< rezone: boundary points slide where the boundary turns less (degrees)
-  double max_move = 0.5;       ///< rezone: largest move of a point per remap, in its shortest edges
-  int remap_every = 1;         ///< remap after every N-th cycle
-  double quality_trigger = 0;  ///< also remap when the worst zone quality falls below it; 0: off
+  double relaxation = 0.5;        ///< rezone: fraction of the way from the Lagrangian to the smoothed mesh
+  int rezone_iterations = 1;      ///< rezone: smoothing sweeps per remap
+  double corner_angle = 0.5;      ///< rezone: boundary points slide where the boundary turns less (degrees)
+  double max_move = 0.5;          ///< rezone: largest move of a point per remap, in its shortest edges
+  int remap_every = 0;            ///< remap after every N-th cycle; 0: off
+  double quality_trigger = 0.25;  ///< remap when the worst zone shape quality falls below it; 0: off
   AleLimiter limiter = AleLimiter::barth_jespersen;
 };
 

@@ -88,6 +88,10 @@ AleRemap::AleRemap(Simulation::Impl& s)
   }
   if (s.problem.ale.mode == AleMode::ale) {
     const AleOptions& o = s.problem.ale;
+    if (o.remap_every == 0 && o.quality_trigger == 0)
+      throw Error(
+          "[ale] mode = \"ale\" with remap_every = 0 and quality_trigger = 0 would never remap: set one of them "
+          "(docs/ale.md)");
     const std::vector<Index> material(zone_material_.begin(), zone_material_.end());
     constraints_ = make_rezone_constraints(
         m, s.problem.boundaries, material,
@@ -109,7 +113,7 @@ bool AleRemap::due() const {
   if (o.mode == AleMode::eulerian) return true;
   // By the cycle number and the state alone, so that a restart remaps where the
   // uninterrupted run does.
-  if (s_.cycle % o.remap_every == 0) return true;
+  if (o.remap_every > 0 && s_.cycle % o.remap_every == 0) return true;
   if (o.quality_trigger <= 0) return false;
   const Mesh& m = s_.mesh();
   return mesh_quality_summary(m, QualityMeasure::reference_shape, s_.x, s_.y, m.x, m.y).worst < o.quality_trigger;

@@ -420,6 +420,47 @@ TEST(Rezone, GmshMeshAtRest) {
   }
 }
 
+TEST(Rezone, ReferenceLayoutWinslowKeepsTheInitialMesh) {
+  // Winslow with the initial mesh as logical space: a graded mesh and a gmsh mesh are fixed
+  // points, a uniform Cartesian mesh gets the regular layout's result (and shares a handful
+  // of weight sets), and a perturbed gmsh mesh is pulled back toward the initial one.
+  Mesh graded = rectangle_mesh(10, 6);
+  for (double& x : graded.x) x = (std::pow(1.3, 10 * x) - 1) / (std::pow(1.3, 10) - 1);
+  meshgen::GeoOptions go;
+  go.parameters = {{"n", 10}};
+  const Mesh gmsh = build_mesh(meshgen::read_geo(std::string(STAGGER_SOURCE_DIR) + "/geometries/blast_box.geo", go));
+  RezoneOptions o;
+  o.relaxation = 1;
+  o.iterations = 10;
+  for (const Mesh* mesh : {static_cast<const Mesh*>(&graded), &gmsh}) {
+    const RezoneConstraints rc = make_rezone_constraints(*mesh, {}, {}, WinslowLayout::reference);
+    const Rezoned r = run_rezone(*mesh, rc, o, {mesh->x, mesh->y});
+    EXPECT_LE(r.result.max_displacement, 1e-12);
+  }
+  const RezoneConstraints rc = make_rezone_constraints(gmsh, {}, {}, WinslowLayout::reference);
+  const Positions lag = perturb_interior(gmsh, rc, 0.25, 1.0 / 10 / 2, 3);
+  double d_lag = 0, d_new = 0;
+  const Rezoned r = run_rezone(gmsh, rc, o, lag);
+  EXPECT_EQ(crossing_zones(gmsh, r.pos.x, r.pos.y), 0);
+  for (Index p = 0; p < gmsh.num_points(); ++p) {
+    d_lag += std::pow(lag.x[p] - gmsh.x[p], 2) + std::pow(lag.y[p] - gmsh.y[p], 2);
+    d_new += std::pow(r.pos.x[p] - gmsh.x[p], 2) + std::pow(r.pos.y[p] - gmsh.y[p], 2);
+  }
+  EXPECT_LT(d_new, 0.1 * d_lag);
+
+  const Mesh uniform = rectangle_mesh(16, 12, 2, 1.5);
+  const RezoneConstraints regular = make_rezone_constraints(uniform, {});
+  const RezoneConstraints reference = make_rezone_constraints(uniform, {}, {}, WinslowLayout::reference);
+  EXPECT_LE(reference.weights_begin.size() - 1, 5u);  // interior points and the four walls
+  o.iterations = 3;
+  const Positions perturbed = perturb_interior(uniform, regular, 0.3, 1.0 / 8, 5);
+  const Rezoned a = run_rezone(uniform, regular, o, perturbed), b = run_rezone(uniform, reference, o, perturbed);
+  for (Index p = 0; p < uniform.num_points(); ++p) {
+    EXPECT_NEAR(a.pos.x[p], b.pos.x[p], 1e-13);
+    EXPECT_NEAR(a.pos.y[p], b.pos.y[p], 1e-13);
+  }
+}
+
 TEST(Rezone, PolygonSoupWithHexagonsAndTriangles) {
   // Rows of hexagons (two quads merged), quads, and triangles (quads split) in one mesh.
   const int n = 8;

@@ -112,8 +112,9 @@ struct HydroOptions {
 /// How the mesh moves (a scene's [ale]; docs/ale.md): with the material (Lagrangian), rezoned
 /// and remapped (ALE), or back to the initial mesh after every step (Eulerian).
 enum class AleMode { lagrangian, ale, eulerian };
-/// The rezone of ale.mode = "ale" (docs/ale.md, "Rezone").
-enum class AleRezone { winslow, reference_jacobian };
+/// The rezone of ale.mode = "ale" (docs/ale.md, "Rezone"): Winslow with the initial mesh as
+/// logical space, towards the initial corner shapes, or Winslow with Knupp's regular layouts.
+enum class AleRezone { winslow, reference_jacobian, winslow_regular };
 /// The limiter of the remap's piecewise-linear reconstruction.
 enum class AleLimiter { barth_jespersen, none };
 
@@ -122,12 +123,12 @@ enum class AleLimiter { barth_jespersen, none };
 struct AleOptions {
   AleMode mode = AleMode::lagrangian;
   AleRezone rezone = AleRezone::winslow;
-  double relaxation = 0.5;     ///< rezone: fraction of the way from the Lagrangian to the smoothed mesh
-  int rezone_iterations = 1;   ///< rezone: smoothing sweeps per remap
-  double corner_angle = 0.5;   ///< rezone: boundary points slide where the boundary turns less (degrees)
-  double max_move = 0.5;       ///< rezone: largest move of a point per remap, in its shortest edges
-  int remap_every = 1;         ///< remap after every N-th cycle
-  double quality_trigger = 0;  ///< also remap when the worst zone quality falls below it; 0: off
+  double relaxation = 0.5;        ///< rezone: fraction of the way from the Lagrangian to the smoothed mesh
+  int rezone_iterations = 1;      ///< rezone: smoothing sweeps per remap
+  double corner_angle = 0.5;      ///< rezone: boundary points slide where the boundary turns less (degrees)
+  double max_move = 0.5;          ///< rezone: largest move of a point per remap, in its shortest edges
+  int remap_every = 0;            ///< remap after every N-th cycle; 0: off
+  double quality_trigger = 0.25;  ///< remap when the worst zone shape quality falls below it; 0: off
   AleLimiter limiter = AleLimiter::barth_jespersen;
 };
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <sstream>
 #include <string>
@@ -13,6 +14,7 @@
 #include "ale/rezone.hpp"
 #include "hydro/boundary.hpp"
 #include "hydro/kernels/strength.hpp"
+#include "hydro/kernels/subzonal_pressure.hpp"
 #include "hydro/state_fields.hpp"
 #include "stagger/error.hpp"
 
@@ -45,7 +47,8 @@ class AleRemap final : public Remap {
   RezoneWorkspace workspace_;
   std::vector<StateArray> specific_;  // the zone fields carried per unit mass
   RemapFields fields_;                // kept so that a remap allocates nothing after the first
-  std::vector<double> xn_, yn_, xa_, ya_, xb_, yb_, kinetic_, zone_mass_old_, dE_;
+  std::vector<double> xn_, yn_, xa_, ya_, xb_, yb_, kinetic_, dk_, dE_;
+  std::vector<std::int64_t> stamp_;  // fix-up: points already visited around a point (2 p, 2 p + 1)
 };
 
 std::vector<int> zone_materials(const Simulation::Impl& s) {
@@ -85,16 +88,23 @@ AleRemap::AleRemap(Simulation::Impl& s)
   }
   if (s.problem.ale.mode == AleMode::ale) {
     const AleOptions& o = s.problem.ale;
+    if (o.remap_every == 0 && o.quality_trigger == 0)
+      throw Error(
+          "[ale] mode = \"ale\" with remap_every = 0 and quality_trigger = 0 would never remap: set one of them "
+          "(docs/ale.md)");
     const std::vector<Index> material(zone_material_.begin(), zone_material_.end());
-    constraints_ = make_rezone_constraints(m, s.problem.boundaries, material);
-    rezone_options_.method = o.rezone == AleRezone::winslow ? RezoneMethod::winslow : RezoneMethod::reference_jacobian;
+    constraints_ = make_rezone_constraints(
+        m, s.problem.boundaries, material,
+        o.rezone == AleRezone::winslow_regular ? WinslowLayout::regular : WinslowLayout::reference);
+    rezone_options_.method =
+        o.rezone == AleRezone::reference_jacobian ? RezoneMethod::reference_jacobian : RezoneMethod::winslow;
     rezone_options_.relaxation = o.relaxation;
     rezone_options_.iterations = o.rezone_iterations;
     rezone_options_.corner_angle_degrees = o.corner_angle;
     rezone_options_.max_move = o.max_move;
   }
-  for (auto* v : {&xn_, &yn_, &xa_, &ya_, &xb_, &yb_, &kinetic_}) v->assign(np, 0.0);
-  zone_mass_old_.assign(nz, 0.0);
+  for (auto* v : {&xn_, &yn_, &xa_, &ya_, &xb_, &yb_, &kinetic_, &dk_}) v->assign(np, 0.0);
+  stamp_.assign(np, -1);
   dE_.assign(nz, 0.0);
 }
 
@@ -103,7 +113,7 @@ bool AleRemap::due() const {
   if (o.mode == AleMode::eulerian) return true;
   // By the cycle number and the state alone, so that a restart remaps where the
   // uninterrupted run does.
-  if (s_.cycle % o.remap_every == 0) return true;
+  if (o.remap_every > 0 && s_.cycle % o.remap_every == 0) return true;
   if (o.quality_trigger <= 0) return false;
   const Mesh& m = s_.mesh();
   return mesh_quality_summary(m, QualityMeasure::reference_shape, s_.x, s_.y, m.x, m.y).worst < o.quality_trigger;
@@ -152,9 +162,44 @@ void AleRemap::fixup() {
   double moved = 0;
   for (Index p = 0; p < np; ++p) {
     const double u = s_.vx[p], w = s_.vy[p];
-    const double dk = kinetic_[p] - 0.5 * s_.point_mass[p] * (u * u + w * w);
+    dk_[p] = kinetic_[p] - 0.5 * s_.point_mass[p] * (u * u + w * w);
+    moved += dk_[p];
+  }
+  // A second-order reconstruction can make dK_p negative at one point and positive at its
+  // neighbours (the total is a loss of kinetic energy, dK >= 0, for a first-order remap). A
+  // point's deficit is first paid by the positive dK of the points sharing a zone with it, in
+  // proportion to them, so that the fix-up stays local and no zone is cooled by a mere
+  // oscillation of the reconstruction. Points in order: the result is the same on any thread
+  // count.
+  const auto around = [&](Index p, std::int64_t tag, auto&& visit) {
+    for (Index k = m.point_corner_begin[p]; k < m.point_corner_begin[p + 1]; ++k) {
+      const Index z = m.corner_zone[m.point_corners[k]];
+      for (Index c = m.zone_corner_begin[z]; c < m.zone_corner_begin[z + 1]; ++c) {
+        const Index q = m.corner_point[c];
+        if (q == p || stamp_[q] == tag) continue;
+        stamp_[q] = tag;
+        visit(q);
+      }
+    }
+  };
+  for (Index p = 0; p < np; ++p) {
+    if (!(dk_[p] < 0)) continue;
+    double supply = 0;
+    around(p, 2 * std::int64_t(p), [&](Index q) { supply += std::max(dk_[q], 0.0); });
+    if (!(supply > 0)) continue;
+    const double take = std::min(-dk_[p], supply) / supply;
+    double got = 0;
+    around(p, 2 * std::int64_t(p) + 1, [&](Index q) {
+      if (!(dk_[q] > 0)) return;
+      const double g = take * dk_[q];
+      dk_[q] -= g;
+      got += g;
+    });
+    dk_[p] += got;
+  }
+  for (Index p = 0; p < np; ++p) {
+    const double dk = dk_[p];
     if (dk == 0) continue;
-    moved += dk;
     double mass = 0;
     for (Index k = m.point_corner_begin[p]; k < m.point_corner_begin[p + 1]; ++k)
       mass += s_.ale_corner_mass[m.point_corners[k]];
@@ -164,15 +209,16 @@ void AleRemap::fixup() {
     }
   }
   // A zone may take a negative share only down to half of its internal energy above the
-  // floor of its equation of state (0 for an ideal gas); the rest of the deficit is taken
+  // floor (0 for an ideal gas; for other equations of state 0 or their min_energy if higher:
+  // the fix-up must not cool a cold solid into tension); the rest of the deficit is taken
   // from all zones in proportion to their energy above the floor. Nothing is clipped: the
   // total moved is exactly what the kinetic energy lost.
   double deficit = 0, capacity = 0;
   for (const ZoneRange& r : s_.ranges) {
     const Material& mat = s_.problem.materials[r.material];
-    const double floor = std::holds_alternative<IdealGas>(mat.eos) ? 0.0 : mat.min_energy;
+    const double floor = std::holds_alternative<IdealGas>(mat.eos) ? 0.0 : std::max(mat.min_energy, 0.0);
     for (Index z = r.begin; z < r.end; ++z) {
-      const double room = s_.zone_mass[z] * (s_.e[z] - floor);
+      const double room = s_.zone_mass[z] * std::max(s_.e[z] - floor, 0.0);
       if (dE_[z] < -0.5 * room) {
         deficit += dE_[z] + 0.5 * room;
         dE_[z] = -0.5 * room;
@@ -181,27 +227,19 @@ void AleRemap::fixup() {
     }
   }
   if (deficit < 0) {
-    if (!(capacity > -deficit) || !std::isfinite(capacity)) {
-      if (!std::isfinite(capacity)) {
-        // Materials without an energy floor take the deficit by mass.
-        double mass = 0;
-        for (Index z = 0; z < nz; ++z) mass += s_.zone_mass[z];
-        for (Index z = 0; z < nz; ++z) dE_[z] += deficit * (s_.zone_mass[z] / mass);
-      } else {
-        std::ostringstream msg;
-        msg << "cycle " << s_.cycle << ", t = " << s_.t << ": the ALE remap's kinetic-energy fix-up must take "
-            << -deficit << " from an internal energy of only " << capacity
-            << " above the equations of state's floors (docs/ale.md): remap more often or relax less";
-        throw Error(msg.str());
-      }
-    } else {
-      for (const ZoneRange& r : s_.ranges) {
-        const Material& mat = s_.problem.materials[r.material];
-        const double floor = std::holds_alternative<IdealGas>(mat.eos) ? 0.0 : mat.min_energy;
-        for (Index z = r.begin; z < r.end; ++z) {
-          const double room = std::max(0.0, s_.zone_mass[z] * (s_.e[z] - floor) + dE_[z]);
-          dE_[z] += deficit * (room / capacity);
-        }
+    if (!(capacity > -deficit)) {
+      std::ostringstream msg;
+      msg << "cycle " << s_.cycle << ", t = " << s_.t << ": the ALE remap's kinetic-energy fix-up must take "
+          << -deficit << " from an internal energy of only " << capacity
+          << " above the equations of state's floors (docs/ale.md): remap more often or relax less";
+      throw Error(msg.str());
+    }
+    for (const ZoneRange& r : s_.ranges) {
+      const Material& mat = s_.problem.materials[r.material];
+      const double floor = std::holds_alternative<IdealGas>(mat.eos) ? 0.0 : std::max(mat.min_energy, 0.0);
+      for (Index z = r.begin; z < r.end; ++z) {
+        const double room = std::max(0.0, s_.zone_mass[z] * std::max(s_.e[z] - floor, 0.0) + dE_[z]);
+        dE_[z] += deficit * (room / capacity);
       }
     }
   }
@@ -218,7 +256,6 @@ bool AleRemap::remap(RemapState&) {
   bool moved = false;
   for (Index p = 0; p < np && !moved; ++p) moved = xn_[p] != s_.x[p] || yn_[p] != s_.y[p];
   if (!moved) return false;
-  std::copy(s_.zone_mass.begin(), s_.zone_mass.end(), zone_mass_old_.begin());
   const int steps = remapper_.substeps(s_.x.data(), s_.y.data(), xn_.data(), yn_.data(), kSubstepFraction);
   if (steps > kMaxSubsteps) {
     std::ostringstream msg;
@@ -261,11 +298,26 @@ bool AleRemap::remap(RemapState&) {
       }
     }
   }
-  // Subzonal masses (the subzonal hourglass options) follow their zone's mass.
+  // Subzonal masses (the subzonal hourglass options): reset to the zone's remapped density on
+  // the new subzones. Scaling the old ones by the zone's mass ratio would leave subzonal
+  // densities that belong to the old mesh, whose pressure perturbations c^2 (rho_k - rho_z)
+  // are large for a stiff material and push the next steps' corner forces (docs/algorithm.md
+  // §18): the rezoned mesh has no hourglass distortion to resist.
   if (!s_.corner_mass.empty()) {
+    const Subzones shape =
+        s_.problem.options.hourglass == Hourglass::subzonal ? Subzones::corners : Subzones::triangles;
     for (Index z = 0; z < nz; ++z) {
-      const double ratio = s_.zone_mass[z] / zone_mass_old_[z];
-      for (Index c = m.zone_corner_begin[z]; c < m.zone_corner_begin[z + 1]; ++c) s_.corner_mass[c] *= ratio;
+      const Index b = m.zone_corner_begin[z];
+      ZoneVertices v;
+      v.n = static_cast<int>(m.zone_corner_begin[z + 1] - b);
+      for (int k = 0; k < v.n; ++k) {
+        v.x[k] = s_.x[m.corner_point[b + k]];
+        v.y[k] = s_.y[m.corner_point[b + k]];
+      }
+      double cx, cy, t[kMaxZoneVertices], area = 0;
+      subzonal_side_triangles(v, cx, cy, t);
+      for (int k = 0; k < v.n; ++k) area += t[k];
+      subzonal_masses(v, s_.zone_mass[z] / area, shape, s_.corner_mass.data() + b);
     }
   }
   // The next predictor keeps the lagged corner forces f^{n-1/2} of the Lagrangian mesh

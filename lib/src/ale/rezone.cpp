@@ -355,7 +355,7 @@ bool winslow_weights(const std::vector<double>& xi, const std::vector<double>& e
 }  // namespace
 
 RezoneConstraints make_rezone_constraints(const Mesh& mesh, std::span<const BoundaryCondition> boundaries,
-                                          std::span<const Index> zone_material) {
+                                          std::span<const Index> zone_material, WinslowLayout layout) {
   const Index np = mesh.num_points(), nz = mesh.num_zones();
   if (!zone_material.empty() && static_cast<Index>(zone_material.size()) != nz)
     throw Error("rezone constraints: zone_material has " + std::to_string(zone_material.size()) +
@@ -440,21 +440,49 @@ RezoneConstraints make_rezone_constraints(const Mesh& mesh, std::span<const Boun
   rc.stencil_id.assign(np, -1);
   rc.stencil_begin.assign(1, 0);
   std::map<std::vector<int>, Index> known;
+  std::map<std::vector<double>, Index> known_reference;
   std::vector<Index> fan_points;
-  std::vector<double> xi, eta;
+  std::vector<double> xi, eta, offsets;
   std::vector<int> key;
+  // known: layout -> weight set, or -1 for a fan without usable weights.
+  const auto weights_of = [&](auto& table, const auto& k) {
+    auto it = table.find(k);
+    if (it == table.end()) {
+      const bool ok = winslow_weights(xi, eta, rc.stencil_weights);
+      const Index id = ok ? static_cast<Index>(rc.weights_begin.size()) - 1 : -1;
+      if (ok) rc.weights_begin.push_back(static_cast<Index>(rc.stencil_weights.size()));
+      it = table.emplace(k, id).first;
+    }
+    return it->second;
+  };
   for (Index p = 0; p < np; ++p) {
     if (rc.kind[p] != RezonePointKind::fixed && winslow_fan(mesh, p, fan_points, xi, eta, key)) {
-      // known: fan type -> weight set, or -1 for a fan without usable weights.
-      auto it = known.find(key);
-      if (it == known.end()) {
-        const bool ok = winslow_weights(xi, eta, rc.stencil_weights);
-        const Index id = ok ? static_cast<Index>(rc.weights_begin.size()) - 1 : -1;
-        if (ok) rc.weights_begin.push_back(static_cast<Index>(rc.stencil_weights.size()));
-        it = known.emplace(key, id).first;
+      if (layout == WinslowLayout::regular) {
+        rc.stencil_id[p] = weights_of(known, key);  // fans with the same zone sizes share weights
+      } else {
+        // The initial offsets in units of the mean initial edge (the edge neighbours are the
+        // regular layout's points at unit distance). Offsets that are integers to rounding are
+        // made exact, so that the points of a uniform mesh share one weight set.
+        double length = 0;
+        int edges = 0;
+        for (std::size_t i = 0; i < fan_points.size(); ++i)
+          if (std::abs(xi[i] * xi[i] + eta[i] * eta[i] - 1) < 1e-9) {
+            length += norm2(mesh.x[fan_points[i]] - mesh.x[p], mesh.y[fan_points[i]] - mesh.y[p]);
+            ++edges;
+          }
+        length /= std::max(edges, 1);
+        const auto snap = [](double v) { return std::abs(v - std::round(v)) < 1e-9 ? std::round(v) : v; };
+        offsets.assign(1, key[0]);
+        for (std::size_t i = 0; i < fan_points.size(); ++i) {
+          xi[i] = snap((mesh.x[fan_points[i]] - mesh.x[p]) / length);
+          eta[i] = snap((mesh.y[fan_points[i]] - mesh.y[p]) / length);
+          offsets.push_back(xi[i]);
+          offsets.push_back(eta[i]);
+        }
+        rc.stencil_id[p] = length > 0 ? weights_of(known_reference, offsets) : -1;
       }
-      rc.stencil_id[p] = it->second;
-      if (it->second >= 0) rc.stencil_points.insert(rc.stencil_points.end(), fan_points.begin(), fan_points.end());
+      if (rc.stencil_id[p] >= 0)
+        rc.stencil_points.insert(rc.stencil_points.end(), fan_points.begin(), fan_points.end());
     }
     rc.stencil_begin.push_back(static_cast<Index>(rc.stencil_points.size()));
   }

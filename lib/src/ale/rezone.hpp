@@ -27,6 +27,19 @@ enum class RezoneMethod {
   reference_jacobian,
 };
 
+// The local logical layout of Winslow's stencils (docs/ale.md, "Winslow smoothing").
+enum class WinslowLayout {
+  // Knupp (1999): each point's fan laid out as regular polygons in equal sectors. The
+  // smoothed mesh tends to Winslow's map of that layout: a graded, skewed or unstructured mesh
+  // is pulled toward regular shapes.
+  regular,
+  // The reference (initial) mesh is the logical space: each neighbour's offset is its initial
+  // offset from the point, in units of the point's mean initial edge length. The initial mesh
+  // is a fixed point (any grading, any gmsh mesh), and a distorted mesh is pulled back toward
+  // it. The same as `regular` on a uniform Cartesian mesh.
+  reference,
+};
+
 // What the rezone may do with a point.
 enum class RezonePointKind : std::uint8_t {
   interior,  // moves freely
@@ -94,9 +107,12 @@ struct RezoneWorkspace {
 // fixed, so that partner points stay matched); `zone_material` (size nzones, or empty to use
 // mesh.zone_region) marks interfaces: a point whose zones have more than one value is fixed,
 // so pure zones stay pure. A point on two or more tags is fixed (the boundary condition
-// changes there). Throws stagger::Error naming the zone if zone_material has the wrong size.
+// changes there). `layout` chooses Winslow's logical layout (the reference one reads the
+// mesh's initial positions mesh.x, mesh.y). Throws stagger::Error naming the zone if
+// zone_material has the wrong size.
 RezoneConstraints make_rezone_constraints(const Mesh& mesh, std::span<const BoundaryCondition> boundaries,
-                                          std::span<const Index> zone_material = {});
+                                          std::span<const Index> zone_material = {},
+                                          WinslowLayout layout = WinslowLayout::regular);
 
 // The rezone: from the Lagrangian positions (x_lag, y_lag) to (x_new, y_new), all of size
 // npoints. (x_ref, y_ref) is the reference mesh (the initial one), read only by

@@ -313,8 +313,9 @@ const OptionTable<AleOptions>& ale_option_table() {
           choice<&A::mode>("mode", {"lagrangian", "ale", "eulerian"},
                            "mesh motion: with the material, rezoned and remapped, or back to the initial mesh "
                            "after every step (docs/ale.md)"),
-          choice<&A::rezone>("rezone", {"winslow", "reference_jacobian"},
-                             "rezone of mode \"ale\": Winslow smoothing or towards the initial zone shapes"),
+          choice<&A::rezone>("rezone", {"winslow", "reference_jacobian", "winslow_regular"},
+                             "rezone of mode \"ale\": Winslow smoothing with the initial mesh as logical space, "
+                             "towards the initial zone shapes, or Winslow with regular local layouts"),
           number<&A::relaxation>("relaxation", {0, 1, false, false}, "-",
                                  "rezone: how far from the Lagrangian towards the smoothed mesh; 0: Lagrangian"),
           integer<&A::rezone_iterations>("rezone_iterations", {0, 1000, false, false}, "-",
@@ -323,10 +324,11 @@ const OptionTable<AleOptions>& ale_option_table() {
                                    "rezone: boundary points slide only where the boundary turns by less"),
           number<&A::max_move>("max_move", {0, 1, true, false}, "-",
                                "rezone: largest move of a point per remap, in units of its shortest edge"),
-          integer<&A::remap_every>("remap_every", {1, 1e9, false, false}, "cycles", "remap after every N-th cycle"),
+          integer<&A::remap_every>("remap_every", {0, 1e9, false, false}, "cycles",
+                                   "also remap after every N-th cycle; 0: off (remap only on the quality trigger)"),
           number<&A::quality_trigger>("quality_trigger", {0, 1, false, true}, "-",
-                                      "also remap when the worst zone shape quality (1 at t = 0) falls below it; "
-                                      "0: off"),
+                                      "remap after any cycle that leaves the worst zone shape quality (1 at t = 0) "
+                                      "below it; 0: off"),
           choice<&A::limiter>("limiter", {"barth_jespersen", "none"},
                               "limiter of the remap's linear reconstruction (none: second order without bounds)"),
       }};

@@ -320,10 +320,10 @@ bool AleRemap::remap(RemapState&) {
       subzonal_masses(v, s_.zone_mass[z] / area, shape, s_.corner_mass.data() + b);
     }
   }
-  // The next predictor keeps the lagged corner forces f^{n-1/2} of the Lagrangian mesh
-  // (docs/ale.md, "Cost"): they only predict v* and x^{n+1/2}, the corrector's f^{n+1/2} is
-  // evaluated on the new mesh and carries momentum and energy, so conservation is unchanged
-  // and a fresh evaluation (numerics.fresh_predictor) would cost half a Lagrangian step.
+  // The lagged corner forces belong to the old mesh: the next predictor evaluates afresh.
+  // Reusing them saves half a step per remap but a remap on the quality trigger moves points
+  // far, and the stale predictor then folds zones (docs/ale.md, "Remap cost").
+  s_.have_previous_forces = false;
   return true;
 }
 

@@ -279,6 +279,18 @@ class MpiCollective final : public Collective {
       std::copy(out.begin() + i * words, out.begin() + (i + 1) * words, sums[i].words().begin());
   }
 
+  std::string agree(const std::string& text) override {
+    int mine = text.empty() ? INT_MAX : my_rank, lowest = INT_MAX;
+    MPI_Allreduce(&mine, &lowest, 1, MPI_INT, MPI_MIN, comm);
+    if (lowest == INT_MAX) return {};
+    std::string result = text;
+    int length = static_cast<int>(result.size());
+    MPI_Bcast(&length, 1, MPI_INT, lowest, comm);
+    result.resize(length);
+    MPI_Bcast(result.data(), length, MPI_CHAR, lowest, comm);
+    return result;
+  }
+
   void exchange(Simulation::Impl& s) override {
     const auto start = std::chrono::steady_clock::now();
     requests.clear();

@@ -211,6 +211,7 @@ int run_command(const std::vector<std::string>& args) {
   } catch (const RestartError& error) {
     throw CollectiveError(error.what());  // the same on every rank
   }
+  write_rank_statistics(simulation, control.output_directory, result.summary.loop_seconds);
   const EnergyAudit energy = simulation.energy();  // collective in a distributed run
   const Simulation* whole = simulation.gather();   // the whole state (rank 0)
   if (!quiet && whole) {

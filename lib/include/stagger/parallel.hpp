@@ -20,6 +20,18 @@ namespace stagger {
 /// The communicator is duplicated: the run's messages never mix with the caller's.
 Simulation distribute(Problem problem, MPI_Comm comm);
 
+/// What one rank of a distributed run holds and what its ghost exchanges cost
+/// (docs/parallel.md, "Measurements"); all zero for a serial Simulation.
+struct HaloStatistics {
+  long owned_zones = 0, ghost_zones = 0, owned_points = 0, ghost_points = 0;
+  int neighbours = 0;  ///< ranks this rank exchanges ghosts with
+  long exchanges = 0;  ///< ghost exchanges (one per cycle, plus fresh force evaluations)
+  long messages = 0;   ///< messages sent (one per neighbour and exchange)
+  double bytes = 0;    ///< bytes sent
+  double seconds = 0;  ///< wall time inside the exchanges (packing, waiting, unpacking)
+};
+HaloStatistics halo_statistics(const Simulation& part);
+
 /// Runs `work` on every rank of `comm` (collective); if it throws stagger::Error on some
 /// ranks, every rank throws the error of the lowest of them, so that a failure in one rank's
 /// part of a set-up (reading a file, meshing) stops every rank with the same message.

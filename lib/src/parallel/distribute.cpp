@@ -33,6 +33,7 @@ namespace stagger {
 
 struct DistributedAccess {
   static Simulation::Impl& impl(Simulation& s) { return *s.impl_; }
+  static const Simulation::Impl& impl(const Simulation& s) { return *s.impl_; }
 };
 
 namespace {
@@ -371,6 +372,21 @@ void copy_configuration(const Simulation::Impl& from, Simulation::Impl& to) {
 }
 
 }  // namespace
+
+HaloStatistics halo_statistics(const Simulation& part) {
+  HaloStatistics h;
+  const Simulation::Impl& s = DistributedAccess::impl(part);
+  const auto* c = dynamic_cast<const MpiCollective*>(s.collective.get());
+  if (!c) return h;
+  for (unsigned char g : s.ghost_zone) (g ? h.ghost_zones : h.owned_zones) += 1;
+  for (unsigned char g : s.ghost_point) (g ? h.ghost_points : h.owned_points) += 1;
+  h.neighbours = static_cast<int>(c->neighbours.size());
+  h.exchanges = c->exchanges;
+  h.messages = c->messages;
+  h.bytes = c->bytes;
+  h.seconds = c->halo_seconds;
+  return h;
+}
 
 void on_every_rank(MPI_Comm comm, const std::function<void()>& work) {
   const int rank = comm_rank(comm);

@@ -411,9 +411,6 @@ void on_every_rank(MPI_Comm comm, const std::function<void()>& work) {
 Simulation distribute(Problem problem, MPI_Comm comm) {
   const int size = comm_size(comm), rank = comm_rank(comm);
   if (size == 1) return Simulation(std::move(problem));
-  if (problem.options.geometry != CoordinateSystem::planar)
-    throw Error(
-        "numerics.geometry: a distributed run is planar only yet (docs/parallel.md); run an rz scene on one rank");
   if (problem.ale.mode != AleMode::lagrangian)
     throw Error("ale.mode: a distributed run is Lagrangian only yet (docs/parallel.md); run an ALE scene on one rank");
   for (const auto& bc : problem.boundaries)

@@ -12,9 +12,11 @@
 
 namespace stagger {
 
-/// Sets up `problem` on every rank of `comm` (collective: every rank passes the same
+/// Sets up `problem` over the ranks of `comm` (collective: every rank passes the same
 /// problem, e.g. from the same scene) and returns this rank's part: its zones (partitioned by
-/// METIS) with the ghost layers the step needs. On one rank it is a serial Simulation.
+/// METIS) with the ghost layers the step needs. Rank 0 sets up the whole problem and sends
+/// each rank its part; the other ranks use only the non-mesh parts of theirs. On one rank it
+/// is a serial Simulation.
 /// Throws stagger::Error, the same on every rank, for a set-up error or a problem that a
 /// distributed run cannot take (periodic boundaries, a remap, fewer zones than ranks).
 /// The communicator is duplicated: the run's messages never mix with the caller's.

@@ -562,10 +562,10 @@ int bench_command(const std::vector<std::string>& args) {
   context.scenes = bench::find_scenes(arguments);
   std::filesystem::create_directories(context.out);
 
-  int problems = 0;
+  int problems = 0, scaling_failures = 0;
   for (const auto& suite : suites) {
     if (suite == "scaling") {  // mpirun children, not `bench --one` (bench_scaling.cpp)
-      problems += bench::scaling_suite(context.scenes, context.out, context.quick, context.repeat);
+      scaling_failures = bench::scaling_suite(context.scenes, context.out, context.quick, context.repeat);
       continue;
     }
     std::vector<bench::RunSpec> runs;
@@ -590,7 +590,8 @@ int bench_command(const std::vector<std::string>& args) {
   if (problems > 0)
     std::cout << "stagger bench: " << problems
               << " ladder/throughput run(s) did not complete (see the status column)\n";
-  return 0;
+  // A scaling run that failed, or an 8-rank run that is not the serial one, is an error.
+  return scaling_failures > 0 ? 1 : 0;
 }
 
 }  // namespace stagger::cli

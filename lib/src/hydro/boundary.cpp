@@ -9,6 +9,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "hydro/kernels/geometry.hpp"
 #include "stagger/error.hpp"
 
 namespace stagger {
@@ -93,6 +94,9 @@ void setup_wall_check(Simulation::Impl& s) {
     tol = std::max(tol, w.tol);
   }
   g.x0 -= tol, g.y0 -= tol, g.x1 += tol, g.y1 += tol;
+  // A crossing path comes within 2 tol of its edge (or ray); the rest covers round-off.
+  for (const WallEdge& w : s.wall_rays) tol = std::max(tol, w.tol);
+  s.wall_clearance.slack = 8 * tol;
   const double extent = std::max(g.x1 - g.x0, g.y1 - g.y0);
   const double h = std::max(total / static_cast<double>(edges.size()), extent / 1024);
   g.inv_h = 1 / h;
@@ -146,7 +150,96 @@ const WallEdge* crossed_wall(const Simulation::Impl& s, Index p, double x0, doub
   return nullptr;
 }
 
+// Squared distance from (px, py) to w (an edge, or a ray when its length is infinite).
+double squared_distance_to_wall(const WallEdge& w, double px, double py) {
+  const double dx = px - w.ax, dy = py - w.ay;
+  const double u = std::clamp(dx * w.tx + dy * w.ty, 0.0, w.length);
+  const double ex = dx - u * w.tx, ey = dy - u * w.ty;
+  return ex * ex + ey * ey;
+}
+
+// A lower bound of the distance from point p at (px, py) to every wall edge and ray it could
+// cross (not its own: passes_through skips them): exact for the rays and for the edges binned
+// in the 5 x 5 grid cells about the point; the edges of other cells are at least as far as the
+// searched block's sides (or beyond the grid's box). NaN for a non-finite point.
+double wall_clearance(const Simulation::Impl& s, Index p, double px, double py) {
+  if (!std::isfinite(px) || !std::isfinite(py)) return std::numeric_limits<double>::quiet_NaN();
+  double d2 = std::numeric_limits<double>::infinity();
+  for (const WallEdge& w : s.wall_rays)
+    if (w.a != p) d2 = std::min(d2, squared_distance_to_wall(w, px, py));
+  const WallGrid& g = s.wall_grid;
+  // Every edge lies in the grid's box.
+  const double out_x = std::max({g.x0 - px, px - g.x1, 0.0}), out_y = std::max({g.y0 - py, py - g.y1, 0.0});
+  constexpr int kReach = 2;
+  const double fi = std::floor((px - g.x0) * g.inv_h), fj = std::floor((py - g.y0) * g.inv_h);
+  if (out_x > 0 || out_y > 0 || fi < 0 || fj < 0 || fi >= g.nx || fj >= g.ny)
+    return std::sqrt(std::min(d2, out_x * out_x + out_y * out_y));
+  const int ci = static_cast<int>(fi), cj = static_cast<int>(fj);
+  const int i0 = std::max(ci - kReach, 0), i1 = std::min(ci + kReach, g.nx - 1);
+  const int j0 = std::max(cj - kReach, 0), j1 = std::min(cj + kReach, g.ny - 1);
+  const double h = 1 / g.inv_h;
+  // The unsearched cells lie beyond the block's sides that are not the grid's own.
+  double beyond = std::numeric_limits<double>::infinity();
+  if (i0 > 0) beyond = std::min(beyond, px - (g.x0 + i0 * h));
+  if (i1 < g.nx - 1) beyond = std::min(beyond, g.x0 + (i1 + 1) * h - px);
+  if (j0 > 0) beyond = std::min(beyond, py - (g.y0 + j0 * h));
+  if (j1 < g.ny - 1) beyond = std::min(beyond, g.y0 + (j1 + 1) * h - py);
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i)
+      for (Index k = g.cell_begin[j * g.nx + i]; k < g.cell_begin[j * g.nx + i + 1]; ++k) {
+        const WallEdge& w = s.wall_edges[g.items[k]];
+        if (w.a != p && w.b != p) d2 = std::min(d2, squared_distance_to_wall(w, px, py));
+      }
+  return std::min(std::sqrt(d2), beyond);
+}
+
+// v rounded down to a float (NaN stays NaN: the point is then always tested).
+float round_down(double v) {
+  float f = static_cast<float>(v);
+  if (f > v) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+  return f;
+}
+
 }  // namespace
+
+Index step_wall_crossing(Simulation::Impl& s, double dt) {
+  if (s.wall_edges.empty()) return -1;
+  const Index np = s.mesh().num_points();
+  WallClearance& c = s.wall_clearance;
+  const bool fresh = !c.valid || s.cycle - c.cycle >= WallClearance::kRefreshCycles;
+  if (c.budget.size() != static_cast<std::size_t>(np)) c.budget.assign(np, 0.0f);
+  float* budget = c.budget.data();
+  const double *x = s.x.data(), *y = s.y.data(), *vx = s.vx.data(), *vy = s.vy.data();
+  const double *ux = s.vx_new.data(), *uy = s.vy_new.data();
+  // x^{n+1} = x^n + dt v_bar, as Z2 and the commit form it.
+  const double half_dt = dt * 0.5;
+  if (!fresh) {
+    // Every budget less the step's length (|step| <= |dx| + |dy|): a step shorter than the
+    // budget cannot reach a wall; a non-positive (or NaN) result marks the point for the test.
+    // Branch-free, so that it vectorises.
+#pragma omp parallel for schedule(static) if (np > 20000)
+    for (Index p = 0; p < np; ++p) {
+      const double x1 = x[p] + half_dt * (vx[p] + ux[p]), y1 = y[p] + half_dt * (vy[p] + uy[p]);
+      const double left = budget[p] - (std::abs(x1 - x[p]) + std::abs(y1 - y[p]));
+      // Rounded down: a float rounds by at most 2^-24 relative.
+      budget[p] = static_cast<float>(left - std::abs(left) * 0x1p-22);
+    }
+  }
+  const double slack = c.slack;
+  Index first = np;
+#pragma omp parallel for schedule(static) reduction(min : first) if (np > 20000)
+  for (Index p = 0; p < np; ++p) {
+    if (!fresh && budget[p] > 0) continue;
+    if (!s.ghost_point.empty() && s.ghost_point[p]) continue;  // a distributed run: this rank's points
+    const double x1 = x[p] + half_dt * (vx[p] + ux[p]), y1 = y[p] + half_dt * (vy[p] + uy[p]);
+    if (crossed_wall(s, p, x[p], y[p], x1, y1)) first = std::min(first, p);
+    budget[p] = round_down(wall_clearance(s, p, x1, y1) - slack - 1e-12 * (std::abs(x1) + std::abs(y1)));
+  }
+  // A step that crosses a wall is rejected (recompute_state invalidates the budgets).
+  c.valid = true;
+  if (fresh) c.cycle = s.cycle;
+  return first < np ? first : -1;
+}
 
 Index find_wall_crossing(const Simulation::Impl& s, double dt) {
   if (s.wall_edges.empty()) return -1;
@@ -349,8 +442,12 @@ void apply_constraints(const Simulation::Impl& s, std::span<double> vx, std::spa
   }
 }
 
-void add_pressure_forces(const Simulation::Impl& s, std::span<const double> x, std::span<const double> y, double t,
-                         std::span<double> fx, std::span<double> fy) {
+namespace {
+template <class Geometry>
+void pressure_forces_in(const Simulation::Impl& s, std::span<const double> x, std::span<const double> y, double t,
+                        std::span<double> fx, std::span<double> fy) {
+  std::fill(fx.begin(), fx.end(), 0.0);
+  std::fill(fy.begin(), fy.end(), 0.0);
   for (const auto& edge : s.pressure_edges) {
     const double p = s.problem.boundaries[edge.bc].pressure(t);
     if (!std::isfinite(p)) {
@@ -366,6 +463,17 @@ void add_pressure_forces(const Simulation::Impl& s, std::span<const double> x, s
     fy[edge.a] += gy;
     fx[edge.b] += gx;
     fy[edge.b] += gy;
+  }
+  Geometry::scale_surface_forces(x, fx, fy);
+}
+}  // namespace
+
+void pressure_forces(const Simulation::Impl& s, std::span<const double> x, std::span<const double> y, double t,
+                     std::span<double> fx, std::span<double> fy) {
+  if (s.rz) {
+    pressure_forces_in<RzGeometry>(s, x, y, t, fx, fy);
+  } else {
+    pressure_forces_in<PlanarGeometry>(s, x, y, t, fx, fy);
   }
 }
 

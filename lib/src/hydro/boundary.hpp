@@ -15,14 +15,20 @@ void setup_boundaries(Simulation::Impl& s);
 // at time t on (vx, vy). Returns nothing; the caller accounts for the work.
 void apply_constraints(const Simulation::Impl& s, std::span<double> vx, std::span<double> vy, double t);
 
-// Adds the applied-pressure forces at time t on the positions (x, y) into (fx, fy).
-void add_pressure_forces(const Simulation::Impl& s, std::span<const double> x, std::span<const double> y, double t,
-                         std::span<double> fx, std::span<double> fy);
+// Sets (fx, fy) to the applied-pressure forces at time t on the positions (x, y): per unit
+// depth, or in rz per radian (the geometry policy's scale_surface_forces; docs/algorithm.md §19).
+void pressure_forces(const Simulation::Impl& s, std::span<const double> x, std::span<const double> y, double t,
+                     std::span<double> fx, std::span<double> fy);
 
 // No point through a wall (docs/algorithm.md §10): the lowest point whose step
 // x^n -> x^n + dt v_bar (v_bar from vx/vy and vx_new/vy_new) leaves the domain through a wall
 // edge, or through the continuation of an open wall end, by more than round-off; -1 if none.
 Index find_wall_crossing(const Simulation::Impl& s, double dt);
+
+// The same answer as find_wall_crossing, for the step being taken: only the points whose step
+// is longer than their wall clearance budget are tested (WallClearance, walls.hpp). Its
+// budgets assume the step is accepted; a rejected step must invalidate them (recompute_state).
+Index step_wall_crossing(Simulation::Impl& s, double dt);
 
 // What find_wall_crossing found for point p: the point, its path and the wall; empty if p
 // does not cross one.

@@ -29,4 +29,19 @@ struct WallGrid {
   std::vector<Index> items;       // indices into the segment list
 };
 
+// How far each point may still move before it could reach a wall (docs/algorithm.md §10): a
+// lower bound of its distance to every wall edge and ray, less what it has moved since. A
+// point whose step is shorter than its budget cannot cross a wall and is not tested; the
+// others are tested and get a fresh budget from their end position. Budgets hold only for the
+// positions of accepted steps: a rejected step, a restore or a remap invalidates them
+// (recompute_state), and every budget is recomputed every kRefreshCycles cycles so the
+// round-off of the subtracted steps cannot add up.
+struct WallClearance {
+  static constexpr long kRefreshCycles = 1024;
+  std::vector<float> budget;  // per point, rounded down
+  bool valid = false;
+  long cycle = 0;    // the cycle at which every budget was last computed afresh
+  double slack = 0;  // subtracted from every distance: the walls' round-off tolerance and more
+};
+
 }  // namespace stagger

@@ -14,6 +14,7 @@
 
 #include "arguments.hpp"
 #include "bench.hpp"
+#include "bench_scaling.hpp"
 #include "stagger/error.hpp"
 #include "stagger/output.hpp"
 
@@ -39,6 +40,11 @@ suites (default: all three):
                or burn materials)
   stress       random mesh perturbations, CFL sweeps and a 1e5-cycle run: what
                completed, what stopped and with which message, the energy audit
+  scaling      (not in the default set; needs mpirun) Sedov 1000 x 1000 for a few dozen
+               cycles on 1 rank x 1 thread, 2 ranks x 1 thread and 1 rank x 2 threads
+               (median of --repeat runs), the halo messages, bytes and seconds per cycle
+               and rank, and an 8-rank oversubscribed run checked bit for bit against
+               the serial one; writes scaling.csv (docs/parallel.md)
 
 options:
   --quick            2-3 smallest rungs of a few scenes and tiny throughput and stress
@@ -583,13 +589,17 @@ int bench_command(const std::vector<std::string>& args) {
   std::vector<std::string> suites = arguments.positional();
   if (suites.empty()) suites = {"ladders", "throughput", "stress"};
   for (const auto& suite : suites)
-    if (suite != "ladders" && suite != "throughput" && suite != "stress")
-      throw UsageError("unknown suite '" + suite + "'; suites: ladders, throughput, stress");
+    if (suite != "ladders" && suite != "throughput" && suite != "stress" && suite != "scaling")
+      throw UsageError("unknown suite '" + suite + "'; suites: ladders, throughput, stress, scaling");
   context.scenes = bench::find_scenes(arguments);
   std::filesystem::create_directories(context.out);
 
-  int problems = 0;
+  int problems = 0, scaling_failures = 0;
   for (const auto& suite : suites) {
+    if (suite == "scaling") {  // mpirun children, not `bench --one` (bench_scaling.cpp)
+      scaling_failures = bench::scaling_suite(context.scenes, context.out, context.quick, context.repeat);
+      continue;
+    }
     std::vector<bench::RunSpec> runs;
     if (suite == "ladders") runs = bench::ladder_runs(context);
     if (suite == "throughput") runs = bench::throughput_runs(context);
@@ -612,7 +622,8 @@ int bench_command(const std::vector<std::string>& args) {
   if (problems > 0)
     std::cout << "stagger bench: " << problems
               << " ladder/throughput run(s) did not complete (see the status column)\n";
-  return 0;
+  // A scaling run that failed, or an 8-rank run that is not the serial one, is an error.
+  return scaling_failures > 0 ? 1 : 0;
 }
 
 }  // namespace stagger::cli

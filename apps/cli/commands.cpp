@@ -190,8 +190,6 @@ int run_command(const std::vector<std::string>& args) {
   // Under mpirun every rank reads the scene; rank 0 reports (docs/parallel.md).
   start_mpi_if_launched();
   const bool root = mpi_state().rank == 0;
-  if (mpi_state().ranks > 1 && arguments.has("--restart"))
-    throw CollectiveError("--restart: a distributed run cannot restart from a checkpoint yet (docs/parallel.md)");
   Scene scene;
   RunControl control;
   on_every_rank([&] {
@@ -206,8 +204,14 @@ int run_command(const std::vector<std::string>& args) {
   if (root) print_warnings(scene);
 
   Simulation simulation = set_up(std::move(scene.problem), scene_path);
-  const RunResult result =
-      arguments.has("--restart") ? resume(simulation, control, arguments.value("--restart")) : run(simulation, control);
+  RunResult result;
+  try {
+    result = arguments.has("--restart") ? resume(simulation, control, arguments.value("--restart"))
+                                        : run(simulation, control);
+  } catch (const RestartError& error) {
+    throw CollectiveError(error.what());  // the same on every rank
+  }
+  write_rank_statistics(simulation, control.output_directory, result.summary.loop_seconds);
   const EnergyAudit energy = simulation.energy();  // collective in a distributed run
   const Simulation* whole = simulation.gather();   // the whole state (rank 0)
   if (!quiet && whole) {

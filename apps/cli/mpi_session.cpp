@@ -2,6 +2,11 @@
 #include "mpi_session.hpp"
 
 #include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <vector>
+
+#include "stagger/output.hpp"
 
 #ifdef STAGGER_WITH_MPI
 #include "stagger/parallel.hpp"
@@ -72,6 +77,38 @@ Simulation distributed_simulation(Problem problem) {
   }
 #endif
   return Simulation(std::move(problem));
+}
+
+void write_rank_statistics([[maybe_unused]] const Simulation& simulation, [[maybe_unused]] const std::string& directory,
+                           [[maybe_unused]] double loop_seconds) {
+#ifdef STAGGER_WITH_MPI
+  if (!mpi_state().active || simulation.ranks() < 2) return;
+  const HaloStatistics h = halo_statistics(simulation);
+  const std::vector<double> mine = {static_cast<double>(h.owned_zones),
+                                    static_cast<double>(h.ghost_zones),
+                                    static_cast<double>(h.owned_points),
+                                    static_cast<double>(h.ghost_points),
+                                    static_cast<double>(h.neighbours),
+                                    static_cast<double>(h.exchanges),
+                                    static_cast<double>(h.messages),
+                                    h.bytes,
+                                    h.seconds,
+                                    loop_seconds};
+  const int ranks = simulation.ranks(), n = static_cast<int>(mine.size());
+  std::vector<double> all(static_cast<std::size_t>(n) * ranks);
+  MPI_Gather(mine.data(), n, MPI_DOUBLE, all.data(), n, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  if (simulation.rank() != 0) return;
+  std::ostringstream out;
+  out.precision(17);
+  out << "rank,owned_zones,ghost_zones,owned_points,ghost_points,neighbours,exchanges,messages,bytes,halo_seconds,"
+         "loop_seconds,cycles\n";
+  for (int r = 0; r < ranks; ++r) {
+    out << r;
+    for (int k = 0; k < n; ++k) out << "," << all[static_cast<std::size_t>(r) * n + k];
+    out << "," << simulation.cycle() << "\n";
+  }
+  write_file_atomically((std::filesystem::path(directory.empty() ? "." : directory) / "ranks.csv").string(), out.str());
+#endif
 }
 
 }  // namespace stagger::cli

@@ -34,4 +34,9 @@ void on_every_rank(const std::function<void()>& work);
 // The Simulation of this rank: the whole problem when serial, this rank's part under MPI.
 Simulation distributed_simulation(Problem problem);
 
+// A distributed run's per-rank figures (docs/parallel.md): rank 0 writes DIR/ranks.csv, one row
+// per rank: zones and points held, neighbours, the ghost exchanges' messages, bytes and seconds,
+// and the rank's loop seconds. Collective; nothing in a serial run.
+void write_rank_statistics(const Simulation& simulation, const std::string& directory, double loop_seconds);
+
 }  // namespace stagger::cli

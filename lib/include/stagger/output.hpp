@@ -33,6 +33,13 @@ void write_file_atomically(const std::string& path, const std::function<void(con
 /// artificial_viscosity, sound_speed, region, (deviatoric_stress_xx/yy/xy, von_mises,
 /// plastic_strain, burn_fraction where present); point field velocity (3 components).
 void write_vtu(const std::string& path, const Simulation& simulation);
+/// A distributed run's dump (docs/output.md, "Distributed runs"): writes this rank's piece of
+/// the state to `path` (atomically): the zones it owns and their points, the arrays of
+/// write_vtu, then the zone fields `rank` and `zone_id` and the point field `point_id` (the
+/// serial numbers). Returns the text of the .pvtu listing `pieces` (file names relative to
+/// it) with the pieces' arrays, for rank 0 to write once every piece is written. On a serial
+/// Simulation the piece is the whole mesh.
+std::string write_vtu_piece(const std::string& path, const Simulation& part, const std::vector<std::string>& pieces);
 /// Writes a bare mesh (zone field region, and per-tag boundary markers as point fields).
 void write_mesh_vtu(const std::string& path, const Mesh& mesh);
 

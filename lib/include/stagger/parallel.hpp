@@ -12,13 +12,27 @@
 
 namespace stagger {
 
-/// Sets up `problem` on every rank of `comm` (collective: every rank passes the same
+/// Sets up `problem` over the ranks of `comm` (collective: every rank passes the same
 /// problem, e.g. from the same scene) and returns this rank's part: its zones (partitioned by
-/// METIS) with the ghost layers the step needs. On one rank it is a serial Simulation.
+/// METIS) with the ghost layers the step needs. Rank 0 sets up the whole problem and sends
+/// each rank its part; the other ranks use only the non-mesh parts of theirs. On one rank it
+/// is a serial Simulation.
 /// Throws stagger::Error, the same on every rank, for a set-up error or a problem that a
 /// distributed run cannot take (periodic boundaries, a remap, fewer zones than ranks).
 /// The communicator is duplicated: the run's messages never mix with the caller's.
 Simulation distribute(Problem problem, MPI_Comm comm);
+
+/// What one rank of a distributed run holds and what its ghost exchanges cost
+/// (docs/parallel.md, "Measurements"); all zero for a serial Simulation.
+struct HaloStatistics {
+  long owned_zones = 0, ghost_zones = 0, owned_points = 0, ghost_points = 0;
+  int neighbours = 0;  ///< ranks this rank exchanges ghosts with
+  long exchanges = 0;  ///< ghost exchanges (one per cycle, plus fresh force evaluations)
+  long messages = 0;   ///< messages sent (one per neighbour and exchange)
+  double bytes = 0;    ///< bytes sent
+  double seconds = 0;  ///< wall time inside the exchanges (packing, waiting, unpacking)
+};
+HaloStatistics halo_statistics(const Simulation& part);
 
 /// Runs `work` on every rank of `comm` (collective); if it throws stagger::Error on some
 /// ranks, every rank throws the error of the lowest of them, so that a failure in one rank's

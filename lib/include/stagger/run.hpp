@@ -7,6 +7,7 @@
 #include <functional>
 #include <string>
 
+#include "stagger/error.hpp"
 #include "stagger/output.hpp"
 #include "stagger/verify.hpp"
 
@@ -24,6 +25,9 @@ struct RunControl {
   long checkpoint_every_cycles = 500;    ///< 0 = never (by cycles)
   double checkpoint_every_seconds = 60;  ///< wall-clock; 0 = never (by time)
   bool checkpoints = true;
+  /// A distributed run: rank 0 gathers each dump into one .vtu (the serial run's file)
+  /// instead of a piece per rank and a .pvtu (docs/output.md).
+  bool gather_dumps = false;
   /// Refuse a run whose schedule gives more dumps than this (a typo such as dump_interval
   /// = 1e-9 would otherwise write files until the disk is full). See estimated_dumps().
   long max_dumps = 10000;
@@ -52,6 +56,12 @@ long estimated_dumps(const RunControl& control, double t_end);
 /// `.stagger.lock`); the previous run's `<name>.pvd` and `<name>_NNNNNN.vtu` there are
 /// removed before the first dump (docs/output.md).
 RunResult run(Simulation& simulation, const RunControl& control);
+
+/// A checkpoint resume() cannot use (or an output directory it cannot take); in a
+/// distributed run every rank throws the same one.
+struct RestartError : Error {
+  using Error::Error;
+};
 
 /// Resumes from a checkpoint written by run() and continues to t_end: `simulation` must be
 /// built from the same scene (its name is checked, the mesh by Simulation::restore). The

@@ -116,6 +116,14 @@ class Simulation {
   /// serial Simulation holding the gathered state (valid until the next gather()), null on
   /// the other ranks.
   const Simulation* gather() const;
+  /// The serial numbers of this part's zones and points, and which of its zones are ghosts
+  /// (another rank's); empty in a serial run.
+  std::span<const Index> global_zones() const;
+  std::span<const Index> global_points() const;
+  std::span<const unsigned char> ghost_zones() const;
+  /// Collective: every rank passes a text (an error met, a decision; "" for none) and gets the
+  /// text of the lowest rank whose text is not empty ("" when none is). Serial: `text`.
+  std::string agree(const std::string& text) const;
   ///@}
 
   /// Installs a remap phase, called after each Lagrangian step (nullptr: none).

@@ -46,6 +46,8 @@ double seconds_since(Clock::time_point start) {
 
 constexpr std::string_view checkpoint_magic = "stagger checkpoint\n";
 constexpr std::uint64_t checkpoint_version = 2;
+// A distributed run's checkpoint is a text manifest naming a file per rank (docs/output.md).
+constexpr std::string_view manifest_magic = "stagger distributed checkpoint\n";
 
 /// The run's own state beyond the simulation: what a restart needs to continue the same
 /// output schedule (dump times and numbering, .pvd entries, history rows, timings).
@@ -142,8 +144,14 @@ class Driver {
     for (const auto& entry : fs::directory_iterator(directory_, ec)) {
       const std::string file = entry.path().filename().string();
       bool ours = file == control_.name + ".pvd";
-      if (!ours && file.starts_with(prefix) && file.ends_with(".vtu")) {
-        const std::string digits = file.substr(prefix.size(), file.size() - prefix.size() - 4);
+      // <name>_NNNNNN.vtu, and a distributed run's <name>_NNNNNN.pvtu and <name>_NNNNNN_rRRRR.vtu
+      const std::size_t suffix = file.ends_with(".pvtu") ? 5 : file.ends_with(".vtu") ? 4 : 0;
+      if (!ours && suffix > 0 && file.starts_with(prefix)) {
+        std::string digits = file.substr(prefix.size(), file.size() - prefix.size() - suffix);
+        const std::size_t piece = digits.find("_r");
+        if (suffix == 4 && piece != std::string::npos && piece + 2 < digits.size() &&
+            digits.find_first_not_of("0123456789", piece + 2) == std::string::npos)
+          digits.resize(piece);
         ours = digits.size() >= 6 && digits.find_first_not_of("0123456789") == std::string::npos;
       }
       if (ours && entry.is_regular_file(ec)) doomed.push_back(entry.path());
@@ -213,7 +221,33 @@ class Driver {
     history_.flush();
   }
 
+  /// A checkpoint (serial) or the manifest of a distributed run's checkpoint (docs/output.md):
+  /// loads this rank's file.
   void load_checkpoint(const std::string& path) {
+    const std::string data = io_detail::read_file(path);
+    const int ranks = simulation_.ranks();
+    if (data.starts_with(manifest_magic)) {
+      const Manifest manifest = read_manifest(path, data);
+      if (manifest.ranks != ranks)
+        throw Error("checkpoint '" + path + "' was written by a run on " + std::to_string(manifest.ranks) +
+                    " ranks; restart it on as many (mpirun -np " + std::to_string(manifest.ranks) + ")" +
+                    (ranks > 1 ? ", not " + std::to_string(ranks) : std::string(", not serially")));
+      const fs::path piece = fs::path(path).parent_path() / piece_checkpoint_name(manifest.parity);
+      load_checkpoint_file(piece.string());
+      if (simulation_.cycle() != manifest.cycle)
+        throw Error("checkpoint '" + piece.string() + "' is at cycle " + std::to_string(simulation_.cycle()) +
+                    ", its manifest '" + path + "' at cycle " + std::to_string(manifest.cycle) +
+                    ": the set is inconsistent; use another checkpoint or restart from t = 0");
+      next_parity_ = 1 - manifest.parity;
+      return;
+    }
+    if (ranks > 1 && data.starts_with(checkpoint_magic))
+      throw Error("checkpoint '" + path + "' was written by a serial run; restart it on one rank, or run on " +
+                  std::to_string(ranks) + " ranks from t = 0");
+    load_checkpoint_file(path);
+  }
+
+  void load_checkpoint_file(const std::string& path) {
     const std::string data = io_detail::read_file(path);
     const std::string source = "checkpoint '" + path + "'";
     if (data.compare(0, checkpoint_magic.size(), checkpoint_magic) != 0) {
@@ -302,10 +336,13 @@ class Driver {
         dump();
         schedule_next_dump();
       }
-      if (control_.checkpoints && simulation_.ranks() == 1) {  // distributed: none yet (docs/parallel.md)
+      if (control_.checkpoints) {
         const bool by_cycles = control_.checkpoint_every_cycles > 0 && cycle % control_.checkpoint_every_cycles == 0;
-        const bool by_time = control_.checkpoint_every_seconds > 0 &&
-                             seconds_since(last_checkpoint) >= control_.checkpoint_every_seconds;
+        bool by_time = control_.checkpoint_every_seconds > 0 &&
+                       seconds_since(last_checkpoint) >= control_.checkpoint_every_seconds;
+        // The ranks' clocks differ: a distributed run checkpoints when one rank's is due.
+        if (control_.checkpoint_every_seconds > 0 && simulation_.ranks() > 1)
+          by_time = !simulation_.agree(by_time ? "due" : "").empty();
         if (by_cycles || by_time) {
           state_.loop_seconds = loop_seconds_before + seconds_since(loop_start);
           write_checkpoint();
@@ -394,8 +431,28 @@ class Driver {
   void dump() {
     char number[32];
     std::snprintf(number, sizeof number, "_%06lld", static_cast<long long>(state_.dump_count));
-    const std::string file = control_.name + number + ".vtu";
-    if (const Simulation* whole = simulation_.gather()) write_vtu((directory_ / file).string(), *whole);
+    const int ranks = simulation_.ranks();
+    std::string file = control_.name + number + ".vtu";
+    if (ranks > 1 && !control_.gather_dumps) {
+      // A piece per rank, then the .pvtu once every piece is written (docs/output.md).
+      std::vector<std::string> pieces;
+      for (int r = 0; r < ranks; ++r) {
+        char piece[32];
+        std::snprintf(piece, sizeof piece, "_r%04d.vtu", r);
+        pieces.push_back(control_.name + number + piece);
+      }
+      file = control_.name + number + ".pvtu";
+      std::string pvtu, error;
+      try {
+        pvtu = write_vtu_piece((directory_ / pieces[simulation_.rank()]).string(), simulation_, pieces);
+      } catch (const Error& e) {
+        error = e.what();
+      }
+      if (error = simulation_.agree(error); !error.empty()) throw Error(error);
+      if (root_) write_file_atomically((directory_ / file).string(), pvtu);
+    } else if (const Simulation* whole = simulation_.gather()) {
+      write_vtu((directory_ / file).string(), *whole);
+    }
     pvd_.add(simulation_.time(), file);
     ++state_.dump_count;
     state_.last_dump_time = simulation_.time();
@@ -428,7 +485,48 @@ class Driver {
     out.bytes(history_.text());
     out.bytes(simulation_.checkpoint());
     out.u64(io_detail::fnv1a64(out.data()));
-    write_file_atomically((directory_ / (control_.name + ".checkpoint")).string(), out.data());
+    const fs::path manifest = directory_ / (control_.name + ".checkpoint");
+    if (simulation_.ranks() == 1) {
+      write_file_atomically(manifest.string(), out.data());
+      return;
+    }
+    // A distributed run: a file per rank, then the manifest naming them. The files alternate
+    // between two sets, so the manifest always names a complete set (docs/output.md).
+    std::string error;
+    try {
+      write_file_atomically((directory_ / piece_checkpoint_name(next_parity_)).string(), out.data());
+    } catch (const Error& e) {
+      error = e.what();
+    }
+    if (error = simulation_.agree(error); !error.empty()) throw Error(error);
+    if (root_)
+      write_file_atomically(manifest.string(),
+                            std::string(manifest_magic) + "ranks " + std::to_string(simulation_.ranks()) + "\ncycle " +
+                                std::to_string(simulation_.cycle()) + "\nset " + std::to_string(next_parity_) + "\n");
+    next_parity_ = 1 - next_parity_;
+  }
+
+  /// This rank's checkpoint file of set `parity` (a distributed run).
+  std::string piece_checkpoint_name(int parity) const {
+    char suffix[48];
+    std::snprintf(suffix, sizeof suffix, ".checkpoint.%d.r%04d", parity, simulation_.rank());
+    return control_.name + suffix;
+  }
+
+  struct Manifest {
+    int ranks = 0, parity = 0;
+    long cycle = 0;
+  };
+  static Manifest read_manifest(const std::string& path, const std::string& data) {
+    Manifest m;
+    char tail = 0;
+    const std::string body = data.substr(manifest_magic.size());
+    if (std::sscanf(body.c_str(), "ranks %d\ncycle %ld\nset %d%c", &m.ranks, &m.cycle, &m.parity, &tail) != 4 ||
+        tail != '\n' || m.ranks < 2 || (m.parity != 0 && m.parity != 1) || m.cycle < 0)
+      throw Error("checkpoint manifest '" + path +
+                  "' is corrupt (expected the lines 'ranks N', 'cycle C', 'set 0|1'); use another checkpoint or "
+                  "restart from t = 0");
+    return m;
   }
 
   void print_progress(Clock::time_point loop_start, double loop_start_time, double t_end, bool terminal) const {
@@ -460,6 +558,7 @@ class Driver {
   PvdWriter pvd_;
   HistoryWriter history_;
   DriverState state_;
+  int next_parity_ = 0;  // the set of a distributed run's next checkpoint files
   Clock::time_point start_ = Clock::now();
 };
 
@@ -477,25 +576,38 @@ RunResult run(Simulation& simulation, const RunControl& control) {
   control.validate();
   Driver driver(simulation, control);
   driver.check_dump_count();
-  if (simulation.rank() == 0) {  // a distributed run's files are rank 0's
-    driver.prepare_directory();
-    driver.lock_directory();
-    driver.remove_previous_dumps();
+  std::string error;
+  try {
+    if (simulation.rank() == 0) {  // a distributed run's shared files are rank 0's
+      driver.prepare_directory();
+      driver.lock_directory();
+      driver.remove_previous_dumps();
+    }
+  } catch (const Error& e) {
+    error = e.what();
   }
+  // Every rank waits for the directory (its pieces go there) and stops on its errors.
+  if (error = simulation.agree(error); !error.empty()) throw Error(error);
   driver.start_fresh();
   return driver.loop();
 }
 
 RunResult resume(Simulation& simulation, const RunControl& control, const std::string& checkpoint) {
   control.validate();
-  if (simulation.ranks() > 1)
-    throw Error("a distributed run cannot restart from a checkpoint yet (docs/parallel.md): restart '" + checkpoint +
-                "' on one rank, or run again from t = 0");
   Driver driver(simulation, control);
   driver.check_dump_count();
-  driver.load_checkpoint(checkpoint);
-  driver.prepare_directory();
-  driver.lock_directory();
+  std::string error;
+  try {
+    driver.load_checkpoint(checkpoint);
+    if (simulation.rank() == 0) {
+      driver.prepare_directory();
+      driver.lock_directory();
+    }
+  } catch (const Error& e) {
+    error = e.what();
+  }
+  // The same error on every rank of a distributed run (the lowest rank's).
+  if (error = simulation.agree(error); !error.empty()) throw RestartError(error);
   return driver.loop();
 }
 

@@ -40,6 +40,9 @@ class Collective {
   virtual void sum(std::span<ExactSum> sums) = 0;
   // Ghost points, zones and corners get their owners' values of every present state array.
   virtual void exchange(Simulation::Impl& s) = 0;
+  // Every rank passes a text; every rank gets the text of the lowest rank whose text is not
+  // empty (empty when none is): errors met on some ranks, decisions of some ranks.
+  virtual std::string agree(const std::string& text) = 0;
   // Rank 0: the whole state, gathered into a serial Simulation (null on the other ranks).
   virtual const Simulation* gather(const Simulation::Impl& s) = 0;
 };

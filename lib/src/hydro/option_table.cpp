@@ -358,6 +358,9 @@ const OptionTable<RunControl>& output_option_table() {
           number<&R::checkpoint_every_seconds>("checkpoint_every_seconds", at_least(0), "s (wall clock)",
                                                "a checkpoint every N seconds of wall-clock time; 0: never by time"),
           flag<&R::checkpoints>("checkpoints", "write checkpoints (false: none)"),
+          flag<&R::gather_dumps>("gather_dumps",
+                                 "a distributed run: gather each dump into one .vtu on rank 0 (the serial "
+                                 "file) instead of a piece per rank and a .pvtu"),
       }};
   return table;
 }

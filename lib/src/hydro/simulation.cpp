@@ -172,6 +172,18 @@ int Simulation::ranks() const {
 const Simulation* Simulation::gather() const {
   return impl_->collective ? impl_->collective->gather(*impl_) : this;
 }
+std::span<const Index> Simulation::global_zones() const {
+  return impl_->global_zone;
+}
+std::span<const Index> Simulation::global_points() const {
+  return impl_->global_point;
+}
+std::span<const unsigned char> Simulation::ghost_zones() const {
+  return impl_->ghost_zone;
+}
+std::string Simulation::agree(const std::string& text) const {
+  return impl_->collective ? impl_->collective->agree(text) : text;
+}
 
 void Simulation::set_remap(std::shared_ptr<Remap> remap) {
   impl_->remap = std::move(remap);
@@ -199,7 +211,6 @@ constexpr std::string_view kBlobMagic = "STGCKPT3";  // the last character is th
 
 std::string Simulation::checkpoint() const {
   const Impl& s = *impl_;
-  if (s.collective) throw Error("a distributed run has no checkpoints yet (docs/parallel.md)");
   io_detail::ByteWriter w;
   w.raw(kBlobMagic);
   write_digest(w, s.digest);
@@ -226,7 +237,6 @@ std::string Simulation::checkpoint() const {
 
 void Simulation::restore(std::string_view blob, const std::string& source) {
   Impl& s = *impl_;
-  if (s.collective) throw Error(source + ": a distributed run cannot restart from a checkpoint yet (docs/parallel.md)");
   io_detail::ByteReader r(blob, source);
   if (blob.size() < kBlobMagic.size() || !r.raw_equals(kBlobMagic)) {
     if (blob.substr(0, kBlobMagic.size() - 1) == kBlobMagic.substr(0, kBlobMagic.size() - 1))

@@ -15,10 +15,13 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "io/atomic_file.hpp"
+#include "io/text_format.hpp"
 #include "stagger/error.hpp"
 #include "stagger/output.hpp"
 #include "stagger/simulation.hpp"
@@ -111,28 +114,43 @@ void add_von_mises(vtkUnstructuredGrid* grid, std::span<const double> sxx, std::
   grid->GetCellData()->AddArray(von_mises);
 }
 
-}  // namespace
-
-void write_vtu(const std::string& path, const Simulation& simulation) {
+/// The dumped state of `simulation` on a grid: every zone and point (`zones` and `points`
+/// null), or the listed ones (a distributed run's piece: its owned zones and their points,
+/// `local_point` mapping the part's points to the piece's).
+void add_state(vtkUnstructuredGrid* grid, const Simulation& simulation, const std::vector<Index>* zones,
+               const std::vector<Index>* points) {
   const Mesh& mesh = simulation.mesh();
-  auto grid = make_grid(mesh, simulation.x(), simulation.y());
   using Role = Simulation::OutputRole;
+  const Index nz = zones ? static_cast<Index>(zones->size()) : mesh.num_zones();
+  const Index np = points ? static_cast<Index>(points->size()) : mesh.num_points();
+  std::vector<double> picked;
+  auto zone_values = [&](std::span<const double> values) -> std::span<const double> {
+    if (!zones) return values;
+    picked.resize(zones->size());
+    for (std::size_t i = 0; i < zones->size(); ++i) picked[i] = values[(*zones)[i]];
+    return picked;
+  };
 
   // The state table's dumped arrays (Simulation::output_fields): the zone arrays of every
   // run, the region (from the mesh), then those of the material models, the deviatoric
   // stress followed by its von Mises invariant; then the point vectors.
   const auto fields = simulation.output_fields();
   for (const auto& f : fields)
-    if (!f.on_points && f.always) add_zone_field(grid, std::string(f.name).c_str(), f.values);
-  add_region_field(grid, mesh);
-  std::span<const double> sxx, syy;
+    if (!f.on_points && f.always) add_zone_field(grid, std::string(f.name).c_str(), zone_values(f.values));
+  vtkNew<vtkIntArray> region;
+  region->SetName("region");
+  region->SetNumberOfValues(nz);
+  for (Index z = 0; z < nz; ++z) region->SetValue(z, mesh.zone_region[zones ? (*zones)[z] : z]);
+  grid->GetCellData()->AddArray(region);
+  std::vector<double> sxx, syy;
   for (const auto& f : fields) {
     if (f.on_points || f.always) continue;
-    add_zone_field(grid, std::string(f.name).c_str(), f.values);
-    if (f.role == Role::deviator_xx) sxx = f.values;
-    if (f.role == Role::deviator_yy) syy = f.values;
-    if (f.role == Role::deviator_xy && sxx.size() == f.values.size() && syy.size() == f.values.size())
-      add_von_mises(grid, sxx, syy, f.values);
+    const std::span<const double> values = zone_values(f.values);
+    add_zone_field(grid, std::string(f.name).c_str(), values);
+    if (f.role == Role::deviator_xx) sxx.assign(values.begin(), values.end());
+    if (f.role == Role::deviator_yy) syy.assign(values.begin(), values.end());
+    if (f.role == Role::deviator_xy && sxx.size() == values.size() && syy.size() == values.size())
+      add_von_mises(grid, sxx, syy, values);
   }
   std::string active_vectors;
   for (const auto& fx : fields) {
@@ -143,8 +161,11 @@ void write_vtu(const std::string& path, const Simulation& simulation) {
       vtkNew<vtkDoubleArray> vector;
       vector->SetName(name.c_str());
       vector->SetNumberOfComponents(3);
-      vector->SetNumberOfTuples(mesh.num_points());
-      for (Index p = 0; p < mesh.num_points(); ++p) vector->SetTuple3(p, fx.values[p], fy.values[p], 0.0);
+      vector->SetNumberOfTuples(np);
+      for (Index p = 0; p < np; ++p) {
+        const Index q = points ? (*points)[p] : p;
+        vector->SetTuple3(p, fx.values[q], fy.values[q], 0.0);
+      }
       grid->GetPointData()->AddArray(vector);
       if (active_vectors.empty()) active_vectors = name;
     }
@@ -162,8 +183,125 @@ void write_vtu(const std::string& path, const Simulation& simulation) {
   cycle->SetNumberOfValues(1);
   cycle->SetValue(0, static_cast<int>(simulation.cycle()));
   grid->GetFieldData()->AddArray(cycle);
+}
 
+void add_int_field(vtkDataSetAttributes* data, const char* name, Index count, const std::function<int(Index)>& value) {
+  vtkNew<vtkIntArray> array;
+  array->SetName(name);
+  array->SetNumberOfValues(count);
+  for (Index i = 0; i < count; ++i) array->SetValue(i, value(i));
+  data->AddArray(array);
+}
+
+/// A distributed run's piece (docs/output.md, "Distributed runs"): the zones this rank
+/// owns, the points of those zones (some owned by other ranks, so the pieces share their
+/// boundary points), the state arrays of write_vtu, then `rank`, and the serial numbers
+/// `zone_id` and `point_id`.
+vtkNew<vtkUnstructuredGrid> make_piece(const Simulation& part) {
+  const Mesh& mesh = part.mesh();
+  const auto ghost = part.ghost_zones();
+  std::vector<Index> zones, points, local(mesh.num_points(), -1);
+  for (Index z = 0; z < mesh.num_zones(); ++z)
+    if (ghost.empty() || !ghost[z]) zones.push_back(z);
+  for (Index z : zones)
+    for (Index c = mesh.zone_corner_begin[z]; c < mesh.zone_corner_begin[z + 1]; ++c) local[mesh.corner_point[c]] = 0;
+  for (Index p = 0; p < mesh.num_points(); ++p)
+    if (local[p] == 0) local[p] = static_cast<Index>(points.size()), points.push_back(p);
+
+  vtkNew<vtkUnstructuredGrid> grid;
+  vtkNew<vtkPoints> xy;
+  xy->SetDataTypeToDouble();
+  xy->SetNumberOfPoints(static_cast<vtkIdType>(points.size()));
+  const auto x = part.x(), y = part.y();
+  for (std::size_t i = 0; i < points.size(); ++i)
+    xy->SetPoint(static_cast<vtkIdType>(i), x[points[i]], y[points[i]], 0);
+  grid->SetPoints(xy);
+  vtkNew<vtkIdTypeArray> offsets, connectivity;
+  vtkNew<vtkUnsignedCharArray> types;
+  offsets->SetNumberOfValues(static_cast<vtkIdType>(zones.size()) + 1);
+  types->SetNumberOfValues(static_cast<vtkIdType>(zones.size()));
+  vtkIdType corners = 0;
+  offsets->SetValue(0, 0);
+  for (std::size_t i = 0; i < zones.size(); ++i) {
+    const Index n = mesh.zone_corner_begin[zones[i] + 1] - mesh.zone_corner_begin[zones[i]];
+    corners += n;
+    offsets->SetValue(static_cast<vtkIdType>(i) + 1, corners);
+    types->SetValue(static_cast<vtkIdType>(i), n == 4 ? VTK_QUAD : (n == 3 ? VTK_TRIANGLE : VTK_POLYGON));
+  }
+  connectivity->SetNumberOfValues(corners);
+  vtkIdType k = 0;
+  for (Index z : zones)
+    for (Index c = mesh.zone_corner_begin[z]; c < mesh.zone_corner_begin[z + 1]; ++c)
+      connectivity->SetValue(k++, local[mesh.corner_point[c]]);
+  vtkNew<vtkCellArray> cells;
+  cells->SetData(offsets, connectivity);
+  grid->SetCells(types, cells);
+
+  add_state(grid, part, &zones, &points);
+  const auto global_zone = part.global_zones();
+  const auto global_point = part.global_points();
+  const Index nz = static_cast<Index>(zones.size()), np = static_cast<Index>(points.size());
+  const int rank = part.rank();
+  add_int_field(grid->GetCellData(), "rank", nz, [&](Index) { return rank; });
+  add_int_field(grid->GetCellData(), "zone_id", nz,
+                [&](Index i) { return global_zone.empty() ? zones[i] : global_zone[zones[i]]; });
+  add_int_field(grid->GetPointData(), "point_id", np,
+                [&](Index i) { return global_point.empty() ? points[i] : global_point[points[i]]; });
+  return grid;
+}
+
+/// The type name of a VTK XML data array.
+std::string xml_type(vtkDataArray* array) {
+  switch (array->GetDataType()) {
+    case VTK_DOUBLE:
+      return "Float64";
+    case VTK_INT:
+      return "Int32";
+    default:
+      throw Error(std::string("internal: no .pvtu type for the array '") + array->GetName() + "'");
+  }
+}
+
+}  // namespace
+
+void write_vtu(const std::string& path, const Simulation& simulation) {
+  const Mesh& mesh = simulation.mesh();
+  auto grid = make_grid(mesh, simulation.x(), simulation.y());
+  add_state(grid, simulation, nullptr, nullptr);
   write_grid(grid, path);
+}
+
+std::string write_vtu_piece(const std::string& path, const Simulation& part, const std::vector<std::string>& pieces) {
+  auto grid = make_piece(part);
+  write_grid(grid, path);
+  // The .pvtu lists the arrays of the pieces (the same on every rank: the whole problem's
+  // configuration) and the piece files.
+  std::string text =
+      "<?xml version=\"1.0\"?>\n"
+      "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+      "  <PUnstructuredGrid GhostLevel=\"0\">\n";
+  auto arrays = [&](vtkDataSetAttributes* data, const char* tag) {
+    text += std::string("    <") + tag;
+    if (vtkDataArray* vectors = data->GetVectors()) text += std::string(" Vectors=\"") + vectors->GetName() + "\"";
+    text += ">\n";
+    for (int i = 0; i < data->GetNumberOfArrays(); ++i) {
+      vtkDataArray* array = data->GetArray(i);
+      text += "      <PDataArray type=\"" + xml_type(array) + "\" Name=\"" + array->GetName() + "\"";
+      if (array->GetNumberOfComponents() != 1)
+        text += " NumberOfComponents=\"" + std::to_string(array->GetNumberOfComponents()) + "\"";
+      text += "/>\n";
+    }
+    text += std::string("    </") + tag + ">\n";
+  };
+  arrays(grid->GetPointData(), "PPointData");
+  arrays(grid->GetCellData(), "PCellData");
+  text +=
+      "    <PPoints>\n"
+      "      <PDataArray type=\"Float64\" NumberOfComponents=\"3\"/>\n"
+      "    </PPoints>\n";
+  for (const std::string& piece : pieces) text += "    <Piece Source=\"" + io_detail::xml_attribute(piece) + "\"/>\n";
+  text += "  </PUnstructuredGrid>\n</VTKFile>\n";
+  return text;
 }
 
 void write_mesh_vtu(const std::string& path, const Mesh& mesh) {

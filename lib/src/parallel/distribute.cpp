@@ -18,8 +18,10 @@
 #include <chrono>
 #include <climits>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "hydro/collective.hpp"
@@ -33,6 +35,7 @@ namespace stagger {
 
 struct DistributedAccess {
   static Simulation::Impl& impl(Simulation& s) { return *s.impl_; }
+  static const Simulation::Impl& impl(const Simulation& s) { return *s.impl_; }
 };
 
 namespace {
@@ -279,6 +282,18 @@ class MpiCollective final : public Collective {
       std::copy(out.begin() + i * words, out.begin() + (i + 1) * words, sums[i].words().begin());
   }
 
+  std::string agree(const std::string& text) override {
+    int mine = text.empty() ? INT_MAX : my_rank, lowest = INT_MAX;
+    MPI_Allreduce(&mine, &lowest, 1, MPI_INT, MPI_MIN, comm);
+    if (lowest == INT_MAX) return {};
+    std::string result = text;
+    int length = static_cast<int>(result.size());
+    MPI_Bcast(&length, 1, MPI_INT, lowest, comm);
+    result.resize(length);
+    MPI_Bcast(result.data(), length, MPI_CHAR, lowest, comm);
+    return result;
+  }
+
   void exchange(Simulation::Impl& s) override {
     const auto start = std::chrono::steady_clock::now();
     requests.clear();
@@ -347,18 +362,140 @@ class MpiCollective final : public Collective {
   }
 };
 
-// The flags that decide which arrays exist and which kernel variants run: the whole
-// problem's, on every rank (a part may lack the region or boundary that sets one).
-void copy_configuration(const Simulation::Impl& from, Simulation::Impl& to) {
-  to.any_strength = from.any_strength;
-  to.any_burn = from.any_burn;
-  to.all_quads = from.all_quads;
-  to.edge_viscosity = from.edge_viscosity;
-  to.has_external = from.has_external;
-  to.dt_min = from.dt_min;
+// A part on the wire (rank 0 to its rank): plain bytes, sizes before arrays.
+struct Packer {
+  std::string data;
+  template <class T>
+  void value(const T& x) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    data.append(reinterpret_cast<const char*>(&x), sizeof x);
+  }
+  template <class T>
+  void put(const std::vector<T>& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    value(static_cast<std::uint64_t>(v.size()));
+    data.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+  }
+  void put(const std::string& text) {
+    value(static_cast<std::uint64_t>(text.size()));
+    data.append(text);
+  }
+};
+
+struct Unpacker {
+  explicit Unpacker(const std::string& d) : data(d) {}
+  const std::string& data;
+  std::size_t at = 0;
+  void need(std::size_t n) const {
+    if (n > data.size() - at) throw Error("internal: a part received from rank 0 is truncated");
+  }
+  template <class T>
+  void value(T& x) {
+    need(sizeof x);
+    std::memcpy(&x, data.data() + at, sizeof x);
+    at += sizeof x;
+  }
+  std::uint64_t count(std::size_t element) {
+    std::uint64_t n = 0;
+    value(n);
+    if (n > (data.size() - at) / element) throw Error("internal: a part received from rank 0 is truncated");
+    return n;
+  }
+  template <class T>
+  void get(std::vector<T>& v) {
+    v.resize(count(sizeof(T)));
+    if (!v.empty()) std::memcpy(v.data(), data.data() + at, v.size() * sizeof(T));
+    at += v.size() * sizeof(T);
+  }
+  void get(std::string& text) {
+    text.assign(data.data() + at, count(1));
+    at += text.size();
+  }
+  void expect_end() const {
+    if (at != data.size()) throw Error("internal: a part received from rank 0 has trailing bytes");
+  }
+};
+
+// Everything a rank needs of its part (distribute() unpacks it in this order).
+std::string pack_part(const Simulation::Impl& g, const Part& part) {
+  Packer out;
+  out.put(part.zones);
+  out.put(part.points);
+  const Mesh local = part_mesh(g.mesh(), part);
+  out.put(local.source);
+  out.value(static_cast<std::uint64_t>(local.region_names.size()));
+  for (const std::string& name : local.region_names) out.put(name);
+  out.put(local.x), out.put(local.y), out.put(local.zone_corner_begin), out.put(local.corner_point);
+  out.put(local.corner_zone), out.put(local.point_corner_begin), out.put(local.point_corners);
+  out.put(local.zone_region), out.put(local.region_zone_begin);
+  out.value(static_cast<std::uint64_t>(local.tags.size()));
+  for (const BoundaryTag& tag : local.tags) out.put(tag.name), out.put(tag.edges), out.put(tag.points);
+  out.value(g.any_strength), out.value(g.any_burn), out.value(g.all_quads), out.value(g.edge_viscosity);
+  out.value(g.has_external), out.value(g.dt_min);
+  std::vector<double> values;
+  for (const StateField& f : state_fields()) {
+    if (!present(g, f.presence)) continue;
+    const std::vector<double>& from = g.*f.member;
+    values.clear();
+    switch (f.entity) {
+      case Entity::point:
+        for (Index p : part.points) values.push_back(from[p]);
+        break;
+      case Entity::zone:
+        for (Index z : part.zones) values.push_back(from[z]);
+        break;
+      case Entity::corner:
+        for (Index z : part.zones)
+          for (Index k = g.zone_corner_begin[z]; k < g.zone_corner_begin[z + 1]; ++k) values.push_back(from[k]);
+        break;
+    }
+    out.put(values);
+  }
+  out.value(g.t), out.value(g.dt_last), out.value(g.dt_next), out.value(g.dt_control_prev);
+  out.value(g.cycle), out.value(g.have_previous_forces), out.value(g.dt_zone);
+  out.value(g.energy_initial), out.value(g.boundary_work), out.value(g.source_work);
+  out.put(g.wall_edges);
+  out.put(g.wall_rays);
+  const WallGrid& w = g.wall_grid;
+  out.value(w.x0), out.value(w.y0), out.value(w.x1), out.value(w.y1), out.value(w.inv_h), out.value(w.nx);
+  out.value(w.ny);
+  out.put(w.cell_begin);
+  out.put(w.items);
+  return std::move(out.data);
+}
+
+Mesh unpack_mesh(Unpacker& in) {
+  Mesh m;
+  in.get(m.source);
+  std::uint64_t n = 0;
+  in.value(n);
+  m.region_names.resize(n);
+  for (std::string& name : m.region_names) in.get(name);
+  in.get(m.x), in.get(m.y), in.get(m.zone_corner_begin), in.get(m.corner_point);
+  in.get(m.corner_zone), in.get(m.point_corner_begin), in.get(m.point_corners);
+  in.get(m.zone_region), in.get(m.region_zone_begin);
+  in.value(n);
+  m.tags.resize(n);
+  for (BoundaryTag& tag : m.tags) in.get(tag.name), in.get(tag.edges), in.get(tag.points);
+  return m;
 }
 
 }  // namespace
+
+HaloStatistics halo_statistics(const Simulation& part) {
+  HaloStatistics h;
+  const Simulation::Impl& s = DistributedAccess::impl(part);
+  const auto* c = dynamic_cast<const MpiCollective*>(s.collective.get());
+  if (!c) return h;
+  for (unsigned char g : s.ghost_zone) (g ? h.ghost_zones : h.owned_zones) += 1;
+  for (unsigned char g : s.ghost_point) (g ? h.ghost_points : h.owned_points) += 1;
+  h.neighbours = static_cast<int>(c->neighbours.size());
+  h.exchanges = c->exchanges;
+  h.messages = c->messages;
+  h.bytes = c->bytes;
+  h.seconds = c->halo_seconds;
+  return h;
+}
 
 void on_every_rank(MPI_Comm comm, const std::function<void()>& work) {
   const int rank = comm_rank(comm);
@@ -383,9 +520,6 @@ void on_every_rank(MPI_Comm comm, const std::function<void()>& work) {
 Simulation distribute(Problem problem, MPI_Comm comm) {
   const int size = comm_size(comm), rank = comm_rank(comm);
   if (size == 1) return Simulation(std::move(problem));
-  if (problem.options.geometry != CoordinateSystem::planar)
-    throw Error(
-        "numerics.geometry: a distributed run is planar only yet (docs/parallel.md); run an rz scene on one rank");
   if (problem.ale.mode != AleMode::lagrangian)
     throw Error("ale.mode: a distributed run is Lagrangian only yet (docs/parallel.md); run an ALE scene on one rank");
   for (const auto& bc : problem.boundaries)
@@ -406,73 +540,108 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
   part_problem.options = problem.options;
   part_problem.t_end = problem.t_end;
   part_problem.ale = problem.ale;
-  // The whole set-up, as the serial run makes it (its errors are the same on every rank).
-  auto whole = std::make_unique<Simulation>(std::move(problem));
-  const Simulation::Impl& g = DistributedAccess::impl(*whole);
-  const Mesh& m = g.mesh();
 
   auto collective = std::make_unique<MpiCollective>();
   MPI_Comm_dup(comm, &collective->comm);
   MPI_Comm c = collective->comm;
   collective->my_rank = rank;
   collective->size = size;
-  std::vector<int>& owner = collective->zone_owner;
-  owner.assign(m.num_zones(), 0);
+  // Rank 0 sets up the whole problem as the serial run does (its errors reach every rank),
+  // partitions it and sends every other rank its part; the other ranks drop their copy of
+  // the mesh first, so they never hold more than the scene's mesh and their part.
+  std::unique_ptr<Simulation> whole;
   on_every_rank(c, [&] {
-    if (rank == 0) owner = partition_zones(m, size);
+    if (rank == 0) whole = std::make_unique<Simulation>(std::move(problem));
   });
-  MPI_Bcast(owner.data(), m.num_zones(), MPI_INT, 0, c);
+  problem = Problem{};
+  const Simulation::Impl* g = rank == 0 ? &DistributedAccess::impl(*whole) : nullptr;
+  int sizes[2] = {g ? g->mesh().num_zones() : 0, g ? g->mesh().num_points() : 0};
+  MPI_Bcast(sizes, 2, MPI_INT, 0, c);
+  const Index global_zones = sizes[0], global_points = sizes[1];
+  std::vector<int>& owner = collective->zone_owner;
+  owner.assign(global_zones, 0);
+  on_every_rank(c, [&] {
+    if (rank == 0) owner = partition_zones(g->mesh(), size);
+  });
+  MPI_Bcast(owner.data(), global_zones, MPI_INT, 0, c);
   std::vector<Index> per_rank(size, 0);
   for (int o : owner) ++per_rank[o];
   for (int q = 0; q < size; ++q)
     if (per_rank[q] == 0) throw Error("METIS left rank " + std::to_string(q) + " without zones; run on fewer ranks");
   // A point belongs to the lowest rank among its zones' owners.
-  std::vector<int> point_owner(m.num_points(), INT_MAX);
-  for (Index z = 0; z < m.num_zones(); ++z)
-    for (Index k = m.zone_corner_begin[z]; k < m.zone_corner_begin[z + 1]; ++k)
-      point_owner[m.corner_point[k]] = std::min(point_owner[m.corner_point[k]], owner[z]);
+  std::vector<int> point_owner(global_points, INT_MAX);
+  if (g) {
+    const Mesh& m = g->mesh();
+    for (Index z = 0; z < m.num_zones(); ++z)
+      for (Index k = m.zone_corner_begin[z]; k < m.zone_corner_begin[z + 1]; ++k)
+        point_owner[m.corner_point[k]] = std::min(point_owner[m.corner_point[k]], owner[z]);
+  }
+  MPI_Bcast(point_owner.data(), global_points, MPI_INT, 0, c);
 
-  std::unique_ptr<Simulation> local;
+  // Rank 0 packs each part (mesh, state, walls, configuration) and sends it; the last is its own.
+  std::string packed;
+  if (g) {
+    for (int q = size - 1; q >= 0; --q) {
+      // Two layers: the corner forces of the zones around this rank's points and their
+      // predicted velocities; a third for the edge viscosity's neighbours (docs/parallel.md).
+      const Part part = make_part(g->mesh(), owner, q, g->edge_viscosity ? 3 : 2);
+      packed = pack_part(*g, part);
+      if (q == 0) break;
+      if (packed.size() > static_cast<std::size_t>(INT_MAX))
+        throw Error("the part of rank " + std::to_string(q) + " is too large for one MPI message (" +
+                    std::to_string(packed.size()) + " bytes); run on more ranks");
+      MPI_Send(packed.data(), static_cast<int>(packed.size()), MPI_BYTE, q, kHaloTag, c);
+    }
+  } else {
+    MPI_Status status;
+    MPI_Probe(0, kHaloTag, c, &status);
+    int count = 0;
+    MPI_Get_count(&status, MPI_BYTE, &count);
+    packed.resize(count);
+    MPI_Recv(packed.data(), count, MPI_BYTE, 0, kHaloTag, c, MPI_STATUS_IGNORE);
+  }
+  Unpacker in(packed);
   Part part;
-  on_every_rank(c, [&] {
-    // Two layers: the corner forces of the zones around this rank's points and their
-    // predicted velocities; a third for the edge viscosity's neighbours (docs/parallel.md).
-    part = make_part(m, owner, rank, g.edge_viscosity ? 3 : 2);
-    part_problem.mesh = part_mesh(m, part);
-    local = std::make_unique<Simulation>(std::move(part_problem));
-  });
+  in.get(part.zones);
+  in.get(part.points);
+  part_problem.mesh = unpack_mesh(in);
+  part.zone_local.assign(global_zones, -1);
+  part.point_local.assign(global_points, -1);
+  for (std::size_t i = 0; i < part.zones.size(); ++i) part.zone_local[part.zones[i]] = static_cast<Index>(i);
+  for (std::size_t i = 0; i < part.points.size(); ++i) part.point_local[part.points[i]] = static_cast<Index>(i);
+  std::unique_ptr<Simulation> local;
+  on_every_rank(c, [&] { local = std::make_unique<Simulation>(std::move(part_problem)); });
   Simulation::Impl& s = DistributedAccess::impl(*local);
-  copy_configuration(g, s);
+  // The flags that decide which arrays exist and which kernel variants run: the whole
+  // problem's (a part may lack the region or boundary that sets one).
+  in.value(s.any_strength);
+  in.value(s.any_burn);
+  in.value(s.all_quads);
+  in.value(s.edge_viscosity);
+  in.value(s.has_external);
+  in.value(s.dt_min);
   allocate_state(s);  // the arrays of the whole problem's configuration
   // The state: the serial set-up's, bit for bit.
   for (const StateField& f : state_fields()) {
     if (!present(s, f.presence)) continue;
     std::vector<double>& to = s.*f.member;
-    const std::vector<double>& from = g.*f.member;
-    switch (f.entity) {
-      case Entity::point:
-        for (std::size_t i = 0; i < part.points.size(); ++i) to[i] = from[part.points[i]];
-        break;
-      case Entity::zone:
-        for (std::size_t i = 0; i < part.zones.size(); ++i) to[i] = from[part.zones[i]];
-        break;
-      case Entity::corner:
-        for (std::size_t i = 0; i < part.zones.size(); ++i) {
-          const Index lb = s.zone_corner_begin[i], gb = g.zone_corner_begin[part.zones[i]];
-          const Index n = s.zone_corner_begin[i + 1] - lb;
-          for (Index k = 0; k < n; ++k) to[lb + k] = from[gb + k];
-        }
-        break;
-    }
+    const std::size_t expected = to.size();
+    in.get(to);
+    if (to.size() != expected) throw Error(std::string("internal: the part's state array '") + f.name + "' differs");
   }
-  s.t = g.t, s.dt_last = g.dt_last, s.dt_next = g.dt_next, s.dt_control_prev = g.dt_control_prev;
-  s.cycle = g.cycle, s.have_previous_forces = g.have_previous_forces, s.dt_zone = g.dt_zone;
-  s.energy_initial = g.energy_initial, s.boundary_work = g.boundary_work, s.source_work = g.source_work;
+  in.value(s.t), in.value(s.dt_last), in.value(s.dt_next), in.value(s.dt_control_prev);
+  in.value(s.cycle), in.value(s.have_previous_forces), in.value(s.dt_zone);
+  in.value(s.energy_initial), in.value(s.boundary_work), in.value(s.source_work);
   // The walls as fixed lines (the no-crossing check): the whole problem's, so that a point is
   // tested against every wall as in the serial run; a wall point off this part becomes -2 - its number.
-  s.wall_edges = g.wall_edges;
-  s.wall_rays = g.wall_rays;
-  s.wall_grid = g.wall_grid;
+  in.get(s.wall_edges);
+  in.get(s.wall_rays);
+  in.value(s.wall_grid.x0), in.value(s.wall_grid.y0), in.value(s.wall_grid.x1), in.value(s.wall_grid.y1);
+  in.value(s.wall_grid.inv_h), in.value(s.wall_grid.nx), in.value(s.wall_grid.ny);
+  in.get(s.wall_grid.cell_begin);
+  in.get(s.wall_grid.items);
+  in.expect_end();
+  packed = std::string();
   for (auto* walls : {&s.wall_edges, &s.wall_rays})
     for (WallEdge& w : *walls) {
       w.a = part.point_local[w.a] >= 0 ? part.point_local[w.a] : -2 - w.a;
@@ -558,6 +727,7 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
                                  per_corner * collective->own_corners.size();
   collective->gather_send.resize(own_values);
   if (rank == 0) {
+    const Mesh& m = g->mesh();
     collective->rank_points.resize(size);
     collective->rank_zones.resize(size);
     collective->rank_corners.resize(size);

@@ -1,0 +1,191 @@
+// `stagger bench scaling` (docs/parallel.md, "Measurements"): strong scaling of Sedov on
+// 1 rank x 1 thread, 2 ranks x 1 thread and 1 rank x 2 threads, the halo figures of the
+// distributed runs (messages, bytes and seconds per cycle and rank, from ranks.csv), and the
+// bitwise check of an 8-rank oversubscribed run against the serial one. Every run is a
+// `stagger run` child process (under mpirun for the distributed ones).
+#include "bench_scaling.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "stagger/output.hpp"
+
+namespace stagger::cli::bench {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// A number of summary.json ("key": value).
+double json_number(const std::string& json, const std::string& key) {
+  const std::string tag = "\"" + key + "\": ";
+  const std::size_t at = json.find(tag);
+  if (at == std::string::npos) return 0;
+  return std::strtod(json.c_str() + at + tag.size(), nullptr);
+}
+
+double load_average() {
+  double load = 0;
+  if (FILE* f = std::fopen("/proc/loadavg", "r")) {
+    if (std::fscanf(f, "%lf", &load) != 1) load = 0;
+    std::fclose(f);
+  }
+  return load;
+}
+
+std::string quoted(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+struct Measurement {
+  std::string name;
+  int ranks = 1, threads = 1;
+  std::string status = "not run";
+  double zones = 0, cycles = 0, loop_seconds = 0, load = 0;
+  // per cycle, the largest over the ranks (docs/parallel.md): messages and bytes sent, halo seconds
+  double messages = 0, bytes = 0, halo_seconds = 0, ghost_fraction = 0;
+};
+
+// Runs `stagger run` (under mpirun when ranks > 1) into `out`; fills the measurement.
+void run(const std::string& stagger, const fs::path& scene, const std::string& sets, int ranks, int threads,
+         const fs::path& out, Measurement& m) {
+  fs::remove_all(out);
+  fs::create_directories(out);
+  std::string command = "OMP_NUM_THREADS=" + std::to_string(threads) + " ";
+  if (ranks > 1) command += "mpirun --oversubscribe -x OMP_NUM_THREADS -np " + std::to_string(ranks) + " ";
+  command += quoted(stagger) + " run " + quoted(scene.string()) + " --quiet --out " + quoted(out.string()) + " " +
+             sets + " > " + quoted((out / "run.log").string()) + " 2>&1";
+  m.ranks = ranks;
+  m.threads = threads;
+  m.load = load_average();
+  const int code = std::system(command.c_str());
+  const std::string summary = read_text(out / "summary.json");
+  m.status = code == 0 && summary.find("\"status\": \"completed\"") != std::string::npos ? "completed" : "failed";
+  m.zones = json_number(summary, "zones");
+  m.cycles = json_number(summary, "cycles");
+  m.loop_seconds = json_number(summary, "loop_seconds");
+  // ranks.csv: rank, owned_zones, ghost_zones, owned_points, ghost_points, neighbours,
+  // exchanges, messages, bytes, halo_seconds, loop_seconds, cycles
+  std::istringstream rows(read_text(out / "ranks.csv"));
+  std::string line;
+  std::getline(rows, line);
+  while (std::getline(rows, line)) {
+    std::vector<double> v;
+    std::istringstream fields(line);
+    std::string field;
+    while (std::getline(fields, field, ',')) v.push_back(std::strtod(field.c_str(), nullptr));
+    if (v.size() < 12 || !(v[11] > 0)) continue;
+    m.messages = std::max(m.messages, v[7] / v[11]);
+    m.bytes = std::max(m.bytes, v[8] / v[11]);
+    m.halo_seconds = std::max(m.halo_seconds, v[9] / v[11]);
+    m.ghost_fraction = std::max(m.ghost_fraction, v[2] / std::max(1.0, v[1]));
+  }
+}
+
+std::string median_of(std::vector<double> values, double& median) {
+  std::sort(values.begin(), values.end());
+  median = values.empty() ? 0 : values[values.size() / 2];
+  std::ostringstream text;
+  text.precision(4);
+  for (std::size_t i = 0; i < values.size(); ++i) text << (i ? " " : "") << values[i];
+  return text.str();
+}
+
+}  // namespace
+
+int scaling_suite(const fs::path& scenes, const fs::path& out_dir, bool quick, int repeat) {
+  const std::string stagger = fs::read_symlink("/proc/self/exe").string();
+  const fs::path sedov = scenes / "sedov.toml";
+  // Sedov n x n for a fixed number of cycles' worth of time (docs/parallel.md): 1M zones
+  // (the size) for ~20 s a run here; --quick: 40 000 zones.
+  const int n = quick ? 200 : 1000;
+  const std::string sets =
+      "--set mesh.nx=" + std::to_string(n) + " --set mesh.ny=" + std::to_string(n) +
+      " --set time.end=" + (quick ? std::string("2e-3") : std::string("1e-5")) +
+      " --set output.dumps=false --set output.checkpoints=false --set output.history_every=1000000";
+  if (repeat < 1) repeat = quick ? 1 : 3;
+  struct Config {
+    std::string name;
+    int ranks, threads;
+  };
+  const std::vector<Config> configs = {
+      {"1 rank x 1 thread", 1, 1}, {"2 ranks x 1 thread", 2, 1}, {"1 rank x 2 threads", 1, 2}};
+  std::vector<Measurement> all;
+  std::map<std::string, double> median_rate;
+  std::ostringstream report;
+  for (const Config& c : configs) {
+    std::vector<double> rates;
+    for (int k = 0; k < repeat; ++k) {
+      Measurement m;
+      m.name = c.name;
+      std::cerr << "[scaling] sedov " << n << "x" << n << " " << c.name << " (" << k + 1 << "/" << repeat << "), load "
+                << load_average() << "\n";
+      run(stagger, sedov, sets, c.ranks, c.threads,
+          out_dir / "scaling_runs" / ("r" + std::to_string(c.ranks) + "t" + std::to_string(c.threads)), m);
+      if (m.status == "completed" && m.loop_seconds > 0) rates.push_back(m.zones * m.cycles / m.loop_seconds);
+      all.push_back(m);
+    }
+    double median = 0;
+    const std::string list = median_of(rates, median);
+    median_rate[c.name] = median;
+    report << "  " << c.name << ": median " << median << " zone-cycles/s (runs: " << list << ")\n";
+  }
+  // Correctness: 8 ranks oversubscribed against the serial run, bit for bit.
+  const std::string small =
+      "--set mesh.nx=40 --set mesh.ny=40 --set time.end=0.05 --set output.dumps=false --set output.checkpoints=false";
+  Measurement serial, eight;
+  serial.name = "correctness serial";
+  eight.name = "correctness 8 ranks";
+  std::cerr << "[scaling] sedov 40x40: serial and 8 ranks (oversubscribed), bitwise\n";
+  run(stagger, sedov, small, 1, 1, out_dir / "scaling_runs" / "serial", serial);
+  run(stagger, sedov, small, 8, 1, out_dir / "scaling_runs" / "np8", eight);
+  const bool identical = serial.status == "completed" && eight.status == "completed" &&
+                         read_text(out_dir / "scaling_runs" / "serial" / "history.csv") ==
+                             read_text(out_dir / "scaling_runs" / "np8" / "history.csv");
+  eight.status = identical ? "bitwise_as_serial" : "DIFFERS_FROM_SERIAL";
+  all.push_back(serial);
+  all.push_back(eight);
+
+  std::ostringstream csv;
+  csv.precision(10);
+  csv << "run,ranks,threads,zones,cycles,loop_seconds,zone_cycles_per_second,load_average,messages_per_cycle,"
+         "bytes_per_cycle,halo_seconds_per_cycle,ghost_fraction,status\n";
+  for (const Measurement& m : all)
+    csv << m.name << "," << m.ranks << "," << m.threads << "," << m.zones << "," << m.cycles << "," << m.loop_seconds
+        << "," << (m.loop_seconds > 0 ? m.zones * m.cycles / m.loop_seconds : 0) << "," << m.load << "," << m.messages
+        << "," << m.bytes << "," << m.halo_seconds << "," << m.ghost_fraction << "," << m.status << "\n";
+  const fs::path csv_path = out_dir / "scaling.csv";
+  write_file_atomically(csv_path.string(), csv.str());
+  const double one = median_rate["1 rank x 1 thread"];
+  std::cout << "stagger bench: scaling: Sedov " << n << " x " << n << ", " << repeat << " run(s) each\n"
+            << report.str();
+  if (one > 0)
+    std::cout << "  speed-up 2 ranks / 1 rank: " << median_rate["2 ranks x 1 thread"] / one
+              << ", 2 threads / 1 thread: " << median_rate["1 rank x 2 threads"] / one << "\n";
+  std::cout << "  8 ranks (oversubscribed) vs serial, Sedov 40 x 40: "
+            << (identical ? "history.csv identical" : "history.csv DIFFERS") << "\n"
+            << "  -> " << csv_path.string() << "\n";
+  int failed = identical ? 0 : 1;
+  for (const Measurement& m : all)
+    if (m.status == "failed") ++failed;
+  return failed;
+}
+
+}  // namespace stagger::cli::bench

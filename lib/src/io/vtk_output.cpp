@@ -9,6 +9,7 @@
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
+#include <vtkStringArray.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridWriter.h>
@@ -162,6 +163,18 @@ void write_vtu(const std::string& path, const Simulation& simulation) {
   cycle->SetNumberOfValues(1);
   cycle->SetValue(0, static_cast<int>(simulation.cycle()));
   grid->GetFieldData()->AddArray(cycle);
+  // The rz convention (docs/output.md). Only rz runs carry it, so that planar .vtu files stay
+  // byte for byte what they were; no `geometry` field means planar.
+  if (simulation.problem().options.geometry == CoordinateSystem::rz) {
+    vtkNew<vtkStringArray> geometry;
+    geometry->SetName("geometry");
+    geometry->InsertNextValue("rz");
+    grid->GetFieldData()->AddArray(geometry);
+    vtkNew<vtkStringArray> convention;
+    convention->SetName("geometry_convention");
+    convention->InsertNextValue("x = r, y = z, axis x = 0; masses, volumes, energies and momenta per radian");
+    grid->GetFieldData()->AddArray(convention);
+  }
 
   write_grid(grid, path);
 }

@@ -1,12 +1,15 @@
 #!/usr/bin/env python3
-"""Runs the axisymmetric (rz) verification scene noh_rz with stagger-profile and plots it.
+"""Runs the axisymmetric (rz) verification scenes noh_rz and sedov_rz with stagger-profile and plots them.
 
     python3 scripts/verification/rz_figures.py [--build BUILD] [--work DIR] [--rings N ...]
+                                               [--sedov-rings N ...]
 
 The exact values (exact_density) and the diagnostics (shock radius, plateau, asymmetry) come
-from the project's C++ code (NohSolution with nu = 3, noh_reference). Writes
-docs/figures/verif_noh_rz.png and prints one table row per run (docs/verification.md,
-"Axisymmetric (rz) problems").
+from the project's C++ code (NohSolution and SedovSolution with nu = 3, noh_reference and
+sedov_reference). The Sedov asymmetry is computed here: the largest relative spread of the
+density over a ring of zones (the generator numbers the zones ring by ring). Writes
+docs/figures/verif_noh_rz.png and docs/figures/verif_sedov_rz.png and prints one table row per
+run (docs/verification.md, "Axisymmetric (rz) problems").
 """
 import argparse
 import csv
@@ -33,24 +36,68 @@ def main():
     parser.add_argument("--build", default=os.path.join(ROOT, "build"))
     parser.add_argument("--work", default="/tmp/stagger_rz_figures")
     parser.add_argument("--rings", type=int, nargs="+", default=[50])
+    parser.add_argument("--sedov-rings", type=int, nargs="+", default=[60])
     args = parser.parse_args()
+    noh(args)
+    sedov(args)
+
+
+def run_profile(args, scene_name, out, overrides, t):
     profile = os.path.join(args.build, "bin", "stagger-profile")
-    scene = os.path.join(ROOT, "apps", "scenes", "noh_rz.toml")
+    scene = os.path.join(ROOT, "apps", "scenes", scene_name)
+    env = dict(os.environ, OMP_NUM_THREADS="1")
+    command = [profile, scene, "--out", out, "--times", str(t)]
+    for o in overrides:
+        command += ["--set", o]
+    subprocess.run(command, check=True, env=env, stdout=subprocess.DEVNULL)
+    errors = {}
+    with open(os.path.join(out, f"errors_{t}.csv")) as f:
+        for row in csv.DictReader(f):
+            errors[row["name"]] = float(row["value"])
+    with open(os.path.join(out, "summary.json")) as f:
+        summary = json.load(f)
+    return read_csv(os.path.join(out, f"zones_{t}.csv")), errors, summary
+
+
+def sedov(args):
+    angles = 20
+    fig, axes = plt.subplots(1, len(args.sedov_rings), figsize=(6 * len(args.sedov_rings), 4.5), squeeze=False)
+    print()
+    print("| angles x rings | cycles | shock r (1) | error | peak density (6) | asymmetry | audit |")
+    print("|---|---|---|---|---|---|---|")
+    for ax, rings in zip(axes[0], args.sedov_rings):
+        out = os.path.join(args.work, f"sedov_rz_{rings}")
+        z, errors, summary = run_profile(args, "sedov_rz.toml", out, [f"mesh.n_r={rings}"], 1)
+        density = z["density"]
+        spread = 0.0
+        for first in range(0, len(density), angles):
+            ring = density[first:first + angles]
+            spread = max(spread, (max(ring) - min(ring)) / max(ring))
+        print(f"| {angles} x {rings} | {summary['cycles']} | {errors['shock_radius']:.4f} | "
+              f"{100 * errors['shock_radius_error']:+.2f} % | {errors['peak_density']:.3f} | {spread:.1e} | "
+              f"{abs(summary['energy']['relative_error']):.1e} |")
+        order = sorted(range(len(z["r"])), key=lambda k: z["r"][k])
+        ax.plot(z["r"], density, ".", ms=2, label="zones (all angles)")
+        ax.plot([z["r"][k] for k in order], [z["exact_density"][k] for k in order], "k-", lw=1,
+                label="exact (SedovSolution, nu = 3)")
+        ax.set_xlim(0, 1.2)
+        ax.set_xlabel("r = sqrt(x^2 + y^2)")
+        ax.set_ylabel("density")
+        ax.set_title(f"spherical Sedov in rz, {angles} angles x {rings} rings, t = 1")
+        ax.legend()
+    path = os.path.join(ROOT, "docs", "figures", "verif_sedov_rz.png")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    print("wrote", path)
+
+
+def noh(args):
     fig, axes = plt.subplots(1, len(args.rings), figsize=(6 * len(args.rings), 4.5), squeeze=False)
     print("| rings | cycles | plateau (64) | shock r (0.2) | asymmetry | audit |")
     print("|---|---|---|---|---|---|")
     for ax, rings in zip(axes[0], args.rings):
         out = os.path.join(args.work, f"noh_rz_{rings}")
-        env = dict(os.environ, OMP_NUM_THREADS="1")
-        subprocess.run([profile, scene, "--out", out, "--set", f"mesh.n_r={rings}", "--times", "0.6"], check=True,
-                       env=env, stdout=subprocess.DEVNULL)
-        z = read_csv(os.path.join(out, "zones_0.6.csv"))
-        errors = {}
-        with open(os.path.join(out, "errors_0.6.csv")) as f:
-            for row in csv.DictReader(f):
-                errors[row["name"]] = float(row["value"])
-        with open(os.path.join(out, "summary.json")) as f:
-            summary = json.load(f)
+        z, errors, summary = run_profile(args, "noh_rz.toml", out, [f"mesh.n_r={rings}"], 0.6)
         print(f"| {rings} | {summary['cycles']} | {errors.get('plateau_density', float('nan')):.4g} | "
               f"{errors.get('shock_radius', float('nan')):.4g} | {errors.get('asymmetry', float('nan')):.2g} | "
               f"{abs(summary['energy']['relative_error']):.1e} |")

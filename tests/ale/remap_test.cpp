@@ -1,6 +1,7 @@
 // The swept-face remap on its own (lib/src/ale/remap.hpp; docs/ale.md, "Remap"): identity,
 // conservation, linear exactness, bounds and order of accuracy.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -371,6 +372,46 @@ TEST(Remap, RepeatedRemapConvergesAtSecondOrder) {
     EXPECT_GE(order2, 1.8) << "limiter " << limiter << ": errors " << e1 << " " << e2 << " " << e3 << ", orders "
                            << order1 << " " << order2;
   }
+}
+
+TEST(Remap, ResultDoesNotDependOnTheThreadCount) {
+  // Large enough for every loop of the remap to run in parallel (more than 4096 zones and
+  // points); a density jump and the limiter, so the clamps and the corner limiter act.
+  const Mesh m = square_mesh(72);
+  ASSERT_GT(m.num_zones(), 4096);
+  ASSERT_GT(m.num_points(), 4096);
+  const std::vector<int> material(m.num_zones(), 0);
+  const State start = make_state(
+      m, [](double x, double y) { return 1 + 0.5 * std::sin(5 * x) * y + (x > 0.6 ? 2 : 0); },
+      [](double x, double y) { return 2 + x * y + (y > 0.4 ? 1 : 0); },
+      [](double x, double y) {
+        return std::array<double, 2>{std::sin(3 * y), x * x - 0.3};
+      });
+  const auto run = [&](int threads) {
+    const int before = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    stagger::Remapper remapper(m, material);
+    State st = start;
+    std::vector<double> xo = m.x, yo = m.y, xn, yn;
+    for (int step = 0; step < 3; ++step) {
+      moved(m, 0.004, 0.7 * step, xn, yn);
+      auto f = st.fields();
+      remapper.remap(xo.data(), yo.data(), xn.data(), yn.data(), f, true);
+      xo = xn, yo = yn;
+    }
+    omp_set_num_threads(before);
+    return st;
+  };
+  const State one = run(1), two = run(2);
+  EXPECT_EQ(one.zone_mass, two.zone_mass);
+  EXPECT_EQ(one.corner_mass, two.corner_mass);
+  EXPECT_EQ(one.point_mass, two.point_mass);
+  EXPECT_EQ(one.vx, two.vx);
+  EXPECT_EQ(one.vy, two.vy);
+  EXPECT_EQ(one.e, two.e);
+  EXPECT_EQ(one.s, two.s);
+  EXPECT_EQ(one.kinetic, two.kinetic);
+  EXPECT_NE(one.zone_mass, start.zone_mass);  // the remap did something
 }
 
 }  // namespace

@@ -247,6 +247,20 @@ TEST(BenchCommand, UnknownSuiteIsOneLineErrorAndExitOne) {
   EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 1) << message;
 }
 
+TEST(BenchCommand, UnknownLadderIsOneLineErrorNamingTheLadders) {
+  const std::string command = "'" + stagger_binary +
+                              "' bench ladders --ladder sedov/nosuch --out /tmp/never_written 2> '" +
+                              quick_out.string() + ".ladder.err'";
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  std::ifstream in(quick_out.string() + ".ladder.err");
+  std::string message((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(message.find("--ladder 'sedov/nosuch'"), std::string::npos) << message;
+  EXPECT_NE(message.find("sedov/edge_ale"), std::string::npos) << message;  // the ALE ladders are listed
+  EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 1) << message;
+}
+
 TEST(BenchCommand, ABadOverrideBecomesAFailedRowNotACrash) {
   fs::create_directories(quick_out.parent_path());
   const fs::path report = quick_out.string() + ".one";

@@ -3,8 +3,10 @@
 // radius. The kernels (volumes, hoop stress) are tested in tests/kernels/rz_kernels_test.cpp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "problems.hpp"
 #include "stagger/error.hpp"
@@ -91,6 +93,75 @@ TEST(Rz, AleIsRefusedUntilTheRemapIsAxisymmetric) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("runs Lagrangian only"), std::string::npos) << e.what();
   }
+}
+
+// The point masses of docs/algorithm.md §19: r_p^0 times the planar median-dual mass, zero on
+// the axis (a uniform 4 x 4 mesh of [0, 1]^2, rho = 2: interior planar dual mass 2 / 16).
+TEST(Rz, PointMassIsTheRadiusTimesThePlanarMassAndZeroOnTheAxis) {
+  Problem p = gas_problem(rectangle_mesh(1.0, 1.0, 4, 4), 1.4, 0.01);
+  p.regions.push_back(uniform_region(2.0, 1.0));
+  p.options.geometry = CoordinateSystem::rz;
+  Simulation sim(std::move(p));
+  int checked = 0;
+  for (std::size_t q = 0; q < sim.x().size(); ++q) {
+    const double x = sim.x()[q], y = sim.y()[q];
+    const bool interior_y = y > 0 && y < 1;
+    if (x == 0) {
+      EXPECT_EQ(sim.point_mass()[q], 0.0) << "axis point " << q;
+    } else if (x < 1 && interior_y) {
+      EXPECT_NEAR(sim.point_mass()[q], x * 2.0 / 16, 1e-15) << "point " << q;
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 9);
+}
+
+// A spherical blast (Sedov, gamma = 1.4) on an equal-angle quarter disc of 8 angles x 24 rings
+// with centre triangles: total energy to round-off, every ring of zones the same to round-off
+// (spherical symmetry, the zones at the axis included), and the axis points moving as the
+// points of their ring on z = 0 (their planar mass from the corners' radial stretch).
+TEST(Rz, SphericalBlastKeepsSymmetryOnAnEqualAngleMesh) {
+  constexpr int kAngles = 8, kRings = 24;
+  Problem p = gas_problem(build_mesh(meshgen::annulus_sector(0, 1.2, 0, M_PI / 2, kAngles, kRings)), 1.4, 0.1);
+  p.regions.push_back(uniform_region(1.0, 1e-10 * 0.4));
+  walls(p, {"start", "end", "outer"});
+  p.deposits.push_back({0.0, 0.0, 0.0677262});
+  p.options.geometry = CoordinateSystem::rz;
+  p.options.viscosity = Viscosity::edge;
+  p.options.hourglass = Hourglass::gamma;
+  p.options.hourglass_coefficient = 0.1;
+  p.options.cfl = 0.15;
+  Simulation sim(std::move(p));
+  sim.advance_to(0.1);
+  EXPECT_LT(std::abs(sim.energy().relative_error), 1e-12);
+  // Zones are numbered ring by ring from the centre (kAngles per ring).
+  const auto rho = sim.density();
+  ASSERT_EQ(rho.size(), static_cast<std::size_t>(kAngles * kRings));
+  double worst = 0, peak = 0;
+  int peak_ring = 0;
+  for (int ring = 0; ring < kRings; ++ring) {
+    const auto first = rho.begin() + ring * kAngles, last = first + kAngles;
+    const double lo = *std::min_element(first, last), hi = *std::max_element(first, last);
+    worst = std::max(worst, (hi - lo) / hi);
+    if (hi > peak) peak = hi, peak_ring = ring;
+  }
+  EXPECT_LT(worst, 1e-11);
+  // The shock (exact radius 0.398 at t = 0.1) has reached rings 6 to 8 (spacing 0.05).
+  EXPECT_GE(peak_ring, 6);
+  EXPECT_LE(peak_ring, 8);
+  EXPECT_GT(peak, 2.0);
+  // Axis points (x = 0) against the points of z = 0 at the same radius.
+  int compared = 0;
+  for (std::size_t a = 0; a < sim.x().size(); ++a) {
+    if (sim.x()[a] != 0 || sim.y()[a] == 0) continue;
+    for (std::size_t b = 0; b < sim.x().size(); ++b)
+      if (sim.y()[b] == 0 && std::abs(sim.x()[b] - sim.y()[a]) < 1e-6) {
+        EXPECT_NEAR(sim.velocity_y()[a], sim.velocity_x()[b], 1e-12 + 1e-10 * std::abs(sim.velocity_x()[b]))
+            << "axis point " << a << " against point " << b;
+        ++compared;
+      }
+  }
+  EXPECT_EQ(compared, kRings);
 }
 
 }  // namespace stagger

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "hydro/kernels/rz.hpp"
 
@@ -70,6 +71,38 @@ TEST(Rz, HoopStressOfAUniformlyExpandingRingIsTheExactElasticOne) {
     }
   }
   EXPECT_GT(plastic, 0.0);  // the run went past first yield (2 mu a t = Y at t = 0.75)
+}
+
+// The radius weight of docs/algorithm.md §19: sum_k x_k a_k . u_k, the work rate per unit
+// pressure of the weighted planar forces, is the exact volume rate dV/dt of a rectangle moved
+// as a rectangle (edges with their own normal speeds), the axis included.
+TEST(Rz, RadiusWeightedWorkIsTheVolumeRateOfARectangle) {
+  for (const double x0 : {0.0, 0.5}) {
+    ZoneVertices v;
+    v.n = 4;
+    const double xs[4] = {x0, 2.0, 2.0, x0}, ys[4] = {1.0, 1.0, 1.5, 1.5};
+    for (int k = 0; k < 4; ++k) v.x[k] = xs[k], v.y[k] = ys[k];
+    const double left = x0 > 0 ? -0.4 : 0.0, right = 0.7, bottom = -0.2, top = 0.9;
+    const double ux[4] = {left, right, right, left}, uy[4] = {bottom, bottom, top, top};
+    double ax[4], ay[4];
+    RzGeometry::corner_gradients<4>(v, ax, ay);
+    double work = 0;
+    for (int k = 0; k < 4; ++k) work += v.x[k] * (ax[k] * ux[k] + ay[k] * uy[k]);
+    const double volume = RzGeometry::volume<4>(v);
+    EXPECT_NEAR(work, RzGeometry::volume_divergence<4>(v, ux, uy, volume) * volume, 1e-14) << "x0 = " << x0;
+  }
+}
+
+// Boundary tractions per radian: the planar point forces times the point's radius, zero on the
+// axis; planar: as they are.
+TEST(Rz, SurfaceForcesAreScaledByTheRadius) {
+  const std::vector<double> x = {0.0, 0.5, 2.0};
+  std::vector<double> fx = {1.0, -2.0, 3.0}, fy = {4.0, 5.0, -6.0};
+  PlanarGeometry::scale_surface_forces(x, fx, fy);
+  EXPECT_EQ(fx, (std::vector<double>{1.0, -2.0, 3.0}));
+  RzGeometry::scale_surface_forces(x, fx, fy);
+  EXPECT_EQ(fx, (std::vector<double>{0.0, -1.0, 6.0}));
+  EXPECT_EQ(fy, (std::vector<double>{0.0, 2.5, -12.0}));
 }
 
 }  // namespace stagger

@@ -386,8 +386,8 @@ TEST(Scenes, EveryExampleSceneLoadsAndValidates) {
     EXPECT_GT(scene.problem.mesh.num_zones(), 0);
     // The verification problems carry their reference; demonstrations (he_plate,
     // elastic_wave) may have none.
-    const std::set<std::string> verification = {"sod",    "noh",    "noh_polar", "sedov",    "saltzman",
-                                                "smooth", "piston", "be_shell",  "accuracy", "detonation"};
+    const std::set<std::string> verification = {"sod",    "noh",      "noh_polar", "sedov",  "saltzman", "smooth",
+                                                "piston", "be_shell", "accuracy",  "noh_rz", "sedov_rz", "detonation"};
     if (verification.count(entry.path().stem().string())) {
       EXPECT_TRUE(static_cast<bool>(scene.control.reference)) << "a verification scene has a [verification]";
     }

@@ -268,8 +268,10 @@ bool AleRemap::remap(RemapState&) {
       for (Index c = m.zone_corner_begin[z]; c < m.zone_corner_begin[z + 1]; ++c) s_.corner_mass[c] *= ratio;
     }
   }
-  // The lagged corner forces belong to the old mesh: the next predictor evaluates afresh.
-  s_.have_previous_forces = false;
+  // The next predictor keeps the lagged corner forces f^{n-1/2} of the Lagrangian mesh
+  // (docs/ale.md, "Cost"): they only predict v* and x^{n+1/2}, the corrector's f^{n+1/2} is
+  // evaluated on the new mesh and carries momentum and energy, so conservation is unchanged
+  // and a fresh evaluation (numerics.fresh_predictor) would cost half a Lagrangian step.
   return true;
 }
 

@@ -17,9 +17,11 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <unordered_map>
 
+#include "hydro/kernels/zone_status.hpp"
 #include "stagger/error.hpp"
 
 namespace stagger {
@@ -76,8 +78,9 @@ inline void pseudo_inverse(double a, double b, double c, double* out) {
 // Barth-Jespersen factor for a reconstruction that changes the mean q by `delta` at one
 // evaluation point, within [qmin, qmax].
 inline double bj_factor(double q, double delta, double qmin, double qmax) {
-  if (delta > 0) return std::min(1.0, (qmax - q) / delta);
-  if (delta < 0) return std::min(1.0, (qmin - q) / delta);
+  // min(1, room / delta), dividing only when the quotient is below 1 (the same value).
+  if (delta > 0) return qmax - q < delta ? (qmax - q) / delta : 1.0;
+  if (delta < 0) return qmin - q > delta ? (qmin - q) / delta : 1.0;
   return 1.0;
 }
 
@@ -152,31 +155,73 @@ Remapper::Remapper(const Mesh& mesh, std::span<const int> zone_material) : mesh_
     point_nbr_.insert(point_nbr_.end(), list.begin(), list.end());
     point_nbr_begin_[p + 1] = static_cast<Index>(point_nbr_.size());
   }
-  for (auto* v : {&area_, &cx_, &cy_, &rho_, &grx_, &gry_, &rlo_, &rhi_, &qgx_, &qgy_, &dm_zone_}) v->assign(nz, 0.0);
+  for (auto* v : {&area_, &cx_, &cy_, &rho_, &grx_, &gry_, &rlo_, &rhi_, &qgx_, &qgy_}) v->assign(nz, 0.0);
   zlsq_.assign(3 * static_cast<std::size_t>(nz), 0.0);
   plsq_.assign(3 * static_cast<std::size_t>(np), 0.0);
   for (auto* v : {&vgx_, &vgy_, &wgx_, &wgy_, &dm_point_, &dpx_, &dpy_, &dke_}) v->assign(np, 0.0);
-  dm_corner_.assign(nc, 0.0);
   for (auto* v : {&crho_, &ccx_, &ccy_, &cgx_, &cgy_}) v->assign(nc, 0.0);
-  zone_touched_.assign(nz, 0);
+  gox_.assign(nz, 0.0);
+  goy_.assign(nz, 0.0);
   point_touched_.assign(np, 0);
+  // The order in which a serial sweep over the zones adds each face's flux to its cells
+  // (zones in order; per corner its side's two halves, if this zone owns the side, then
+  // its centre segment): the gathers of remap() follow it.
+  std::vector<std::vector<Index>> zl(nz), cl(nc), pl(np);
+  for (Index z = 0; z < nz; ++z) {
+    const Index b = mesh.zone_corner_begin[z], n = mesh.zone_corner_begin[z + 1] - b;
+    for (Index k = 0; k < n; ++k) {
+      const Index c = b + k, c1 = b + (k + 1 == n ? 0 : k + 1);
+      const Index nb = side_zone_[c];
+      if (nb > z) {
+        for (Index h = 0; h < 2; ++h) {
+          const Index slot = 2 * c + h;
+          cl[h == 0 ? c : c1].push_back(2 * slot);
+          cl[h == 0 ? side_corner0_[c] : side_corner1_[c]].push_back(2 * slot + 1);
+          zl[z].push_back(2 * slot);
+          zl[nb].push_back(2 * slot + 1);
+        }
+      }
+      const Index slot = 2 * nc + c;
+      cl[c].push_back(2 * slot);
+      cl[c1].push_back(2 * slot + 1);
+      pl[mesh.corner_point[c]].push_back(2 * c);
+      pl[mesh.corner_point[c1]].push_back(2 * c + 1);
+    }
+  }
+  const auto flatten = [](const std::vector<std::vector<Index>>& lists, std::vector<Index>& begin,
+                          std::vector<Index>& flat) {
+    begin.assign(lists.size() + 1, 0);
+    for (std::size_t i = 0; i < lists.size(); ++i) {
+      flat.insert(flat.end(), lists[i].begin(), lists[i].end());
+      begin[i + 1] = static_cast<Index>(flat.size());
+    }
+  };
+  flatten(zl, zone_list_begin_, zone_list_);
+  flatten(cl, corner_list_begin_, corner_list_);
+  flatten(pl, point_list_begin_, point_list_);
+  flux_mass_.assign(3 * static_cast<std::size_t>(nc), 0.0);
+  flux_active_.assign(3 * static_cast<std::size_t>(nc), 0);
+  for (auto* v : {&seg_px_, &seg_py_, &seg_ke_}) v->assign(nc, 0.0);
 }
 
 int Remapper::substeps(const double* xo, const double* yo, const double* xn, const double* yn, double fraction) const {
-  const Mesh& m = mesh_;
-  double worst = 0;
-  for (Index p = 0; p < m.num_points(); ++p) {
-    const double d = std::hypot(xn[p] - xo[p], yn[p] - yo[p]);
-    if (d == 0) continue;
-    double shortest = 1e300;
+  const Index np = mesh_.num_points();
+  // Squared lengths (no hypot: only the integer count is wanted).
+  double worst2 = 0;
+#pragma omp parallel for schedule(static) reduction(max : worst2) if (np > kParallelMin)
+  for (Index p = 0; p < np; ++p) {
+    const double dx = xn[p] - xo[p], dy = yn[p] - yo[p], d2 = dx * dx + dy * dy;
+    if (d2 == 0) continue;
+    double shortest2 = std::numeric_limits<double>::infinity();
     for (Index k = point_nbr_begin_[p]; k < point_nbr_begin_[p + 1]; ++k) {
       const Index q = point_nbr_[k];
-      shortest =
-          std::min({shortest, std::hypot(xo[q] - xo[p], yo[q] - yo[p]), std::hypot(xn[q] - xn[p], yn[q] - yn[p])});
+      const double ox = xo[q] - xo[p], oy = yo[q] - yo[p], nx = xn[q] - xn[p], ny = yn[q] - yn[p];
+      shortest2 = std::min({shortest2, ox * ox + oy * oy, nx * nx + ny * ny});
     }
-    worst = std::max(worst, d / shortest);
+    worst2 = std::max(worst2, d2 / shortest2);
   }
-  return std::max(1, static_cast<int>(std::ceil(worst / fraction)));
+  const double steps = std::ceil(std::sqrt(worst2) / fraction);
+  return steps <= 1 ? 1 : steps < 1e6 ? static_cast<int>(steps) : 1000000;  // a zero edge: "too many"
 }
 
 // Least-squares gradient of the zone values q over the zone neighbours (centroids), limited
@@ -184,6 +229,7 @@ int Remapper::substeps(const double* xo, const double* yo, const double* xn, con
 void Remapper::zone_gradients(const double* q, bool limiter, double* gx, double* gy, double* lo, double* hi) {
   const Mesh& m = mesh_;
   const Index nz = m.num_zones();
+#pragma omp parallel for schedule(static) if (nz > kParallelMin)
   for (Index z = 0; z < nz; ++z) {
     gx[z] = gy[z] = 0;
     if (lo) lo[z] = hi[z] = q[z];
@@ -235,31 +281,47 @@ void Remapper::zone_gradients(const double* q, bool limiter, double* gx, double*
   }
 }
 
-void Remapper::point_gradients(const double* q, bool limiter, double* gx, double* gy) {
+// Both velocity components in one pass over the neighbours (each component's arithmetic as
+// for a single field).
+void Remapper::point_gradients(const double* qa, const double* qb, bool limiter, double* gax, double* gay, double* gbx,
+                               double* gby) {
   const Index np = mesh_.num_points();
+#pragma omp parallel for schedule(static) if (np > kParallelMin)
   for (Index p = 0; p < np; ++p) {
-    double bx = 0, by = 0, qmin = q[p], qmax = q[p];
+    const double* q[2] = {qa, qb};
+    double bx[2] = {0, 0}, by[2] = {0, 0}, qmin[2] = {qa[p], qb[p]}, qmax[2] = {qa[p], qb[p]};
     for (Index k = point_nbr_begin_[p]; k < point_nbr_begin_[p + 1]; ++k) {
       const Index n = point_nbr_[k];
-      const double dq = q[n] - q[p];
-      bx += (xo_[n] - xo_[p]) * dq;
-      by += (yo_[n] - yo_[p]) * dq;
-      qmin = std::min(qmin, q[n]);
-      qmax = std::max(qmax, q[n]);
+      const double dx = xo_[n] - xo_[p], dy = yo_[n] - yo_[p];
+      for (int i = 0; i < 2; ++i) {
+        const double dq = q[i][n] - q[i][p];
+        bx[i] += dx * dq;
+        by[i] += dy * dq;
+        qmin[i] = std::min(qmin[i], q[i][n]);
+        qmax[i] = std::max(qmax[i], q[i][n]);
+      }
     }
     const double* pinv = &plsq_[3 * static_cast<std::size_t>(p)];
-    double ax = pinv[0] * bx + pinv[1] * by, ay = pinv[1] * bx + pinv[2] * by;
-    if (limiter && (ax != 0 || ay != 0)) {
-      double phi = 1.0;
+    double ax[2], ay[2], phi[2] = {1.0, 1.0};
+    bool limit[2];
+    for (int i = 0; i < 2; ++i) {
+      ax[i] = pinv[0] * bx[i] + pinv[1] * by[i], ay[i] = pinv[1] * bx[i] + pinv[2] * by[i];
+      limit[i] = limiter && (ax[i] != 0 || ay[i] != 0);
+    }
+    if (limit[0] || limit[1]) {
       for (Index k = point_nbr_begin_[p]; k < point_nbr_begin_[p + 1]; ++k) {
         const Index n = point_nbr_[k];
         const double mx = 0.5 * (xo_[n] - xo_[p]), my = 0.5 * (yo_[n] - yo_[p]);
-        phi = std::min(phi, bj_factor(q[p], ax * mx + ay * my, qmin, qmax));
+        for (int i = 0; i < 2; ++i)
+          if (limit[i]) phi[i] = std::min(phi[i], bj_factor(q[i][p], ax[i] * mx + ay[i] * my, qmin[i], qmax[i]));
       }
-      phi = std::max(phi, 0.0);
-      ax *= phi, ay *= phi;
     }
-    gx[p] = ax, gy[p] = ay;
+    for (int i = 0; i < 2; ++i)
+      if (limit[i]) {
+        phi[i] = std::max(phi[i], 0.0);
+        ax[i] *= phi[i], ay[i] *= phi[i];
+      }
+    gax[p] = ax[0], gay[p] = ay[0], gbx[p] = ax[1], gby[p] = ay[1];
   }
 }
 
@@ -270,7 +332,10 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
   const std::size_t nf = f.specific.size();
   xo_ = xo, yo_ = yo;  // the old positions, for the gradient passes
 
-  // Old geometry: areas, centroids (the reconstruction's centres), densities.
+  // Old geometry: areas, centroids (the reconstruction's centres), densities, and the old
+  // corners (x_k, mid(k, k+1), centre, mid(k-1, k)): their own densities m_c / A_c feed the
+  // centre-segment fluxes, so that a corner never gives more than it holds.
+#pragma omp parallel for schedule(static) if (nz > kParallelMin)
   for (Index z = 0; z < nz; ++z) {
     const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
     const double x0 = xo[m.corner_point[b]], y0 = yo[m.corner_point[b]];
@@ -285,8 +350,23 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
     cx_[z] = x0 + sx / (3 * a2);
     cy_[z] = y0 + sy / (3 * a2);
     rho_[z] = f.zone_mass[z] / area_[z];
+    double gox = 0, goy = 0;
+    for (Index k = 0; k < n; ++k) gox += xo[m.corner_point[b + k]], goy += yo[m.corner_point[b + k]];
+    gox /= n, goy /= n;
+    gox_[z] = gox, goy_[z] = goy;
+    for (Index k = 0; k < n; ++k) {
+      const Index p = m.corner_point[b + k], pn = m.corner_point[b + (k + 1) % n],
+                  pp = m.corner_point[b + (k + n - 1) % n];
+      const double qx[4] = {xo[p], 0.5 * (xo[p] + xo[pn]), gox, 0.5 * (xo[p] + xo[pp])};
+      const double qy[4] = {yo[p], 0.5 * (yo[p] + yo[pn]), goy, 0.5 * (yo[p] + yo[pp])};
+      const Swept a = swept_quad(qx[0], qy[0], qx[1], qy[1], qx[2], qy[2], qx[3], qy[3], 0.0, 0.0);
+      crho_[b + k] = a.area > 0 ? f.corner_mass[b + k] / a.area : rho_[z];
+      ccx_[b + k] = a.area > 0 ? a.mx / a.area : gox;
+      ccy_[b + k] = a.area > 0 ? a.my / a.area : goy;
+    }
   }
   // Least-squares matrices.
+#pragma omp parallel for schedule(static) if (nz > kParallelMin)
   for (Index z = 0; z < nz; ++z) {
     double a = 0, b = 0, c = 0;
     for (Index k = zone_nbr_begin_[z]; k < zone_nbr_begin_[z + 1]; ++k) {
@@ -295,6 +375,7 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
     }
     pseudo_inverse(a, b, c, &zlsq_[3 * static_cast<std::size_t>(z)]);
   }
+#pragma omp parallel for schedule(static) if (np > kParallelMin)
   for (Index p = 0; p < np; ++p) {
     double a = 0, b = 0, c = 0;
     for (Index k = point_nbr_begin_[p]; k < point_nbr_begin_[p + 1]; ++k) {
@@ -304,48 +385,23 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
     pseudo_inverse(a, b, c, &plsq_[3 * static_cast<std::size_t>(p)]);
   }
   zone_gradients(rho_.data(), limiter, grx_.data(), gry_.data(), rlo_.data(), rhi_.data());
-  qgx_.resize(nf * nz), qgy_.resize(nf * nz), qmin_.resize(nf * nz), qmax_.resize(nf * nz), dq_.assign(nf * nz, 0.0);
+  qgx_.resize(nf * nz), qgy_.resize(nf * nz), qmin_.resize(nf * nz), qmax_.resize(nf * nz);
+  flux_q_.resize(nf * 2 * static_cast<std::size_t>(nc));
   for (std::size_t i = 0; i < nf; ++i)
     zone_gradients(f.specific[i], limiter, qgx_.data() + i * nz, qgy_.data() + i * nz, qmin_.data() + i * nz,
                    qmax_.data() + i * nz);
-  point_gradients(f.vx, limiter, vgx_.data(), vgy_.data());
-  point_gradients(f.vy, limiter, wgx_.data(), wgy_.data());
+  point_gradients(f.vx, f.vy, limiter, vgx_.data(), vgy_.data(), wgx_.data(), wgy_.data());
 
-  std::fill(dm_zone_.begin(), dm_zone_.end(), 0.0);
-  std::fill(dm_corner_.begin(), dm_corner_.end(), 0.0);
-  for (auto* v : {&dm_point_, &dpx_, &dpy_, &dke_}) std::fill(v->begin(), v->end(), 0.0);
-  std::fill(zone_touched_.begin(), zone_touched_.end(), 0);
-  std::fill(point_touched_.begin(), point_touched_.end(), 0);
-
-  for (Index z = 0; z < nz; ++z) {
-    const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
-    double gox = 0, goy = 0;
-    for (Index k = 0; k < n; ++k) gox += xo[m.corner_point[b + k]], goy += yo[m.corner_point[b + k]];
-    gox /= n, goy /= n;
-    // The old corners (x_k, mid(k, k+1), centre, mid(k-1, k)): their own densities m_c / A_c
-    // feed the centre-segment fluxes, so that a corner never gives more than it holds.
-    double* corner_rho = crho_.data() + b;
-    double* corner_cx = ccx_.data() + b;
-    double* corner_cy = ccy_.data() + b;
-    for (Index k = 0; k < n; ++k) {
-      const Index p = m.corner_point[b + k], pn = m.corner_point[b + (k + 1) % n],
-                  pp = m.corner_point[b + (k + n - 1) % n];
-      const double qx[4] = {xo[p], 0.5 * (xo[p] + xo[pn]), gox, 0.5 * (xo[p] + xo[pp])};
-      const double qy[4] = {yo[p], 0.5 * (yo[p] + yo[pn]), goy, 0.5 * (yo[p] + yo[pp])};
-      const Swept a = swept_quad(qx[0], qy[0], qx[1], qy[1], qx[2], qy[2], qx[3], qy[3], 0.0, 0.0);
-      const double r = a.area > 0 ? f.corner_mass[b + k] / a.area : rho_[z];
-      corner_rho[k] = r;
-      corner_cx[k] = a.area > 0 ? a.mx / a.area : gox;
-      corner_cy[k] = a.area > 0 ? a.my / a.area : goy;
-    }
-  }
   // The corner gradient: the zone's limited one, scaled where needed so that the corner's
   // reconstruction stays non-negative at its vertices.
+#pragma omp parallel for schedule(static) if (nz > kParallelMin)
   for (Index z = 0; z < nz; ++z) {
     const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
-    double gox = 0, goy = 0;
-    for (Index k = 0; k < n; ++k) gox += xo[m.corner_point[b + k]], goy += yo[m.corner_point[b + k]];
-    gox /= n, goy /= n;
+    const double gox = gox_[z], goy = goy_[z];
+    if (grx_[z] == 0 && gry_[z] == 0) {  // nothing to limit (phi = 1)
+      for (Index c = b; c < b + n; ++c) cgx_[c] = grx_[z], cgy_[c] = gry_[z];
+      continue;
+    }
     for (Index k = 0; k < n; ++k) {
       const Index c = b + k, cn = b + (k + 1) % n, cp = b + (k + n - 1) % n;
       const double r = crho_[c];
@@ -361,14 +417,19 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
       cgx_[c] = phi * grx_[z], cgy_[c] = phi * gry_[z];
     }
   }
+
+  // The fluxes, face by face (each face once, from the zone that owns it), into their slots.
+  const std::size_t nc2 = 2 * static_cast<std::size_t>(nc);
+#pragma omp parallel for schedule(static) if (nz > kParallelMin)
   for (Index z = 0; z < nz; ++z) {
     const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
-    double gox = 0, goy = 0, gnx = 0, gny = 0;
+    double gnx = 0, gny = 0;
     for (Index k = 0; k < n; ++k) {
       const Index p = m.corner_point[b + k];
-      gox += xo[p], goy += yo[p], gnx += xn[p], gny += yn[p];
+      gnx += xn[p], gny += yn[p];
     }
-    gox /= n, goy /= n, gnx /= n, gny /= n;
+    gnx /= n, gny /= n;
+    const double gox = gox_[z], goy = goy_[z];
     const double* corner_rho = crho_.data() + b;
     const double* corner_cx = ccx_.data() + b;
     const double* corner_cy = ccy_.data() + b;
@@ -376,8 +437,8 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
     const double* corner_gy = cgy_.data() + b;
     for (Index k = 0; k < n; ++k) {
       const Index kp = (k + 1 == n) ? 0 : k + 1;
-      const Index c = b + k, c1 = b + kp;
-      const Index pa = m.corner_point[c], pb = m.corner_point[c1];
+      const Index c = b + k;
+      const Index pa = m.corner_point[c], pb = m.corner_point[b + kp];
       const double mox = 0.5 * (xo[pa] + xo[pb]), moy = 0.5 * (yo[pa] + yo[pb]);
       const double mnx = 0.5 * (xn[pa] + xn[pb]), mny = 0.5 * (yn[pa] + yn[pb]);
       // Half sides, once per interior side (from the lower zone).
@@ -385,14 +446,19 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
       if (nb > z) {
         for (int h = 0; h < 2; ++h) {
           // Half h: a -> mid (corner c) or mid -> b (corner c1); the cell on the left gains.
+          const std::size_t slot = 2 * static_cast<std::size_t>(c) + h;
           const double ax0 = h == 0 ? xo[pa] : mox, ay0 = h == 0 ? yo[pa] : moy;
           const double ax1 = h == 0 ? xn[pa] : mnx, ay1 = h == 0 ? yn[pa] : mny;
           const double bx0 = h == 0 ? mox : xo[pb], by0 = h == 0 ? moy : yo[pb];
           const double bx1 = h == 0 ? mnx : xn[pb], by1 = h == 0 ? mny : yn[pb];
           const Swept s0 = swept_quad(ax0, ay0, ax1, ay1, bx1, by1, bx0, by0, 0.0, 0.0);
-          if (s0.area == 0 && s0.mx == 0 && s0.my == 0) continue;
+          if (s0.area == 0 && s0.mx == 0 && s0.my == 0) {
+            flux_mass_[slot] = 0, flux_active_[slot] = 0;
+            for (std::size_t i = 0; i < nf; ++i) flux_q_[i * nc2 + slot] = 0;
+            continue;
+          }
           const Index d = s0.area > 0 ? nb : z;
-          const Index left = h == 0 ? c : c1, right = h == 0 ? side_corner0_[c] : side_corner1_[c];
+          const Index left = h == 0 ? c : b + kp, right = h == 0 ? side_corner0_[c] : side_corner1_[c];
           // The donor corner's density and (zone) gradient: a corner never gives more than
           // it holds, and corner densities stay tied to their neighbours'.
           const Index dc = s0.area > 0 ? right : left;
@@ -404,62 +470,119 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
             const double lo = s0.area * rlo_[d], hi = s0.area * rhi_[d];
             flux = std::clamp(flux, std::min(lo, hi), std::max(lo, hi));
           }
-          dm_corner_[left] += flux, dm_corner_[right] -= flux;
-          dm_zone_[z] += flux, dm_zone_[nb] -= flux;
-          zone_touched_[z] = zone_touched_[nb] = 1;
+          flux_mass_[slot] = flux, flux_active_[slot] = 1;
           for (std::size_t i = 0; i < nf; ++i) {
             const double qd = f.specific[i][d];
-            if (!std::isfinite(qd)) continue;
-            const std::size_t id = i * nz + d;
-            const double mqx = s0.mx - cx_[d] * s0.area, mqy = s0.my - cy_[d] * s0.area;
-            double fq = qd * flux + crho_[dc] * (qgx_[id] * mqx + qgy_[id] * mqy);
-            // The flux's mean value stays within the donor's neighbourhood bounds (a jump
-            // of density inside the swept region could push it out): a repair that keeps
-            // conservation, since the same flux leaves one zone and enters the other.
-            // (A bow-tie region's mean is no point value: it is left alone.)
-            if (s0.simple) {
-              const double lo = flux * qmin_[id], hi = flux * qmax_[id];
-              fq = std::clamp(fq, std::min(lo, hi), std::max(lo, hi));
+            double fq = 0;
+            if (std::isfinite(qd)) {
+              const std::size_t id = i * nz + d;
+              const double mqx = s0.mx - cx_[d] * s0.area, mqy = s0.my - cy_[d] * s0.area;
+              fq = qd * flux + crho_[dc] * (qgx_[id] * mqx + qgy_[id] * mqy);
+              // The flux's mean value stays within the donor's neighbourhood bounds (a jump
+              // of density inside the swept region could push it out): a repair that keeps
+              // conservation, since the same flux leaves one zone and enters the other.
+              // (A bow-tie region's mean is no point value: it is left alone.)
+              if (s0.simple) {
+                const double lo = flux * qmin_[id], hi = flux * qmax_[id];
+                fq = std::clamp(fq, std::min(lo, hi), std::max(lo, hi));
+              }
             }
-            dq_[i * nz + z] += fq, dq_[i * nz + nb] -= fq;
+            flux_q_[i * nc2 + slot] = fq;
           }
         }
       }
       // Centre segment mid(k, k+1) -> centre: corner c on the left, corner c1 on the right.
+      const std::size_t slot = nc2 + c;
       const Swept s = swept_quad(mox, moy, mnx, mny, gnx, gny, gox, goy, 0.0, 0.0);
-      if (s.area == 0 && s.mx == 0 && s.my == 0) continue;
+      if (s.area == 0 && s.mx == 0 && s.my == 0) {
+        flux_mass_[slot] = seg_px_[c] = seg_py_[c] = seg_ke_[c] = 0, flux_active_[slot] = 0;
+        continue;
+      }
       const Index kd = s.area > 0 ? kp : k;  // the donor corner
       const double flux = corner_rho[kd] * s.area + corner_gx[kd] * (s.mx - corner_cx[kd] * s.area) +
                           corner_gy[kd] * (s.my - corner_cy[kd] * s.area);
-      dm_corner_[c] += flux, dm_corner_[c1] -= flux;
       const Index pd = s.area > 0 ? pb : pa;
       const double mx = s.mx - xo[pd] * s.area, my = s.my - yo[pd] * s.area;
       const double u = f.vx[pd], w = f.vy[pd];
       const double du = vgx_[pd] * mx + vgy_[pd] * my, dw = wgx_[pd] * mx + wgy_[pd] * my;
-      const double px = u * flux + corner_rho[kd] * du, py = w * flux + corner_rho[kd] * dw;
-      const double ke = 0.5 * (u * u + w * w) * flux + corner_rho[kd] * (u * du + w * dw);
-      dm_point_[pa] += flux, dm_point_[pb] -= flux;
-      dpx_[pa] += px, dpx_[pb] -= px;
-      dpy_[pa] += py, dpy_[pb] -= py;
-      dke_[pa] += ke, dke_[pb] -= ke;
-      point_touched_[pa] = point_touched_[pb] = 1;
+      flux_mass_[slot] = flux, flux_active_[slot] = 1;
+      seg_px_[c] = u * flux + corner_rho[kd] * du;
+      seg_py_[c] = w * flux + corner_rho[kd] * dw;
+      seg_ke_[c] = 0.5 * (u * u + w * w) * flux + corner_rho[kd] * (u * du + w * dw);
     }
   }
 
-  // New zone values: mass plus fluxes, specific quantities from their mass-weighted sums.
+  // The sums per zone, corner and point, in the serial sweep's order (bitwise the same on
+  // any number of threads); a slot's sign bit says whether the flux is added or taken.
+  const auto sum = [](const Index* begin, const Index* end, const double* value) {
+    double s = 0;
+    for (const Index* e = begin; e != end; ++e) {
+      const double v = value[*e >> 1];
+      if (*e & 1)
+        s -= v;
+      else
+        s += v;
+    }
+    return s;
+  };
+  Index failed_zone = std::numeric_limits<Index>::max();
+#pragma omp parallel for schedule(static) reduction(min : failed_zone) if (nz > kParallelMin)
   for (Index z = 0; z < nz; ++z) {
-    if (!zone_touched_[z]) continue;
-    const double m0 = f.zone_mass[z], m1 = m0 + dm_zone_[z];
-    if (!(m1 > 0)) fail_mass(m, "zone", z, m1);
+    const Index* lb = zone_list_.data() + zone_list_begin_[z];
+    const Index* le = zone_list_.data() + zone_list_begin_[z + 1];
+    // New zone values: mass plus fluxes, specific quantities from their mass-weighted sums.
+    double dm = 0;
+    char touched = 0;
+    for (const Index* e = lb; e != le; ++e) {
+      const Index s = *e >> 1;
+      touched |= flux_active_[s];
+      if (*e & 1)
+        dm -= flux_mass_[s];
+      else
+        dm += flux_mass_[s];
+    }
+    if (!touched) continue;
+    const double m0 = f.zone_mass[z], m1 = m0 + dm;
+    if (!(m1 > 0)) {
+      failed_zone = std::min(failed_zone, z);
+      continue;
+    }
     for (std::size_t i = 0; i < nf; ++i) {
       double& q = f.specific[i][z];
-      if (std::isfinite(q)) q = (m0 * q + dq_[i * nz + z]) / m1;
+      if (std::isfinite(q)) q = (m0 * q + sum(lb, le, flux_q_.data() + i * nc2)) / m1;
     }
     f.zone_mass[z] = m1;
   }
+  if (failed_zone != std::numeric_limits<Index>::max()) {
+    const Index* lb = zone_list_.data() + zone_list_begin_[failed_zone];
+    const Index* le = zone_list_.data() + zone_list_begin_[failed_zone + 1];
+    fail_mass(m, "zone", failed_zone, f.zone_mass[failed_zone] + sum(lb, le, flux_mass_.data()));
+  }
+#pragma omp parallel for schedule(static) if (nc > kParallelMin)
   for (Index c = 0; c < nc; ++c) {
-    if (dm_corner_[c] == 0) continue;
-    f.corner_mass[c] += dm_corner_[c];
+    const double dm = sum(corner_list_.data() + corner_list_begin_[c], corner_list_.data() + corner_list_begin_[c + 1],
+                          flux_mass_.data());
+    if (dm != 0) f.corner_mass[c] += dm;
+  }
+#pragma omp parallel for schedule(static) if (np > kParallelMin)
+  for (Index p = 0; p < np; ++p) {
+    const Index* lb = point_list_.data() + point_list_begin_[p];
+    const Index* le = point_list_.data() + point_list_begin_[p + 1];
+    // One pass, four sums, each in the serial order.
+    const double* mass = flux_mass_.data() + nc2;
+    const char* flag = flux_active_.data() + nc2;
+    double sm = 0, sx = 0, sy = 0, sk = 0;
+    char a = 0;
+    for (const Index* e = lb; e != le; ++e) {
+      const Index s = *e >> 1;
+      a |= flag[s];
+      if (*e & 1)
+        sm -= mass[s], sx -= seg_px_[s], sy -= seg_py_[s], sk -= seg_ke_[s];
+      else
+        sm += mass[s], sx += seg_px_[s], sy += seg_py_[s], sk += seg_ke_[s];
+    }
+    point_touched_[p] = a;
+    dm_point_[p] = sm, dpx_[p] = sx, dpy_[p] = sy, dke_[p] = sk;
   }
   // Repair: a zone whose corner kept less than a hundredth of its share (subcell densities
   // can drift apart where the mesh and the flow shear; a swept region then takes more than
@@ -492,12 +615,17 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
     }
     ++repaired_;
   }
+  Index failed_point = std::numeric_limits<Index>::max();
+#pragma omp parallel for schedule(static) reduction(min : failed_point) if (np > kParallelMin)
   for (Index p = 0; p < np; ++p) {
     const double m0 = f.point_mass[p], u = f.vx[p], w = f.vy[p];
     double ke = 0.5 * m0 * (u * u + w * w);
     if (point_touched_[p]) {
       const double m1 = m0 + dm_point_[p];
-      if (!(m1 > 0)) fail_mass(m, "point", p, m1);
+      if (!(m1 > 0)) {
+        failed_point = std::min(failed_point, p);
+        continue;
+      }
       f.vx[p] = (m0 * u + dpx_[p]) / m1;
       f.vy[p] = (m0 * w + dpy_[p]) / m1;
       f.point_mass[p] = m1;
@@ -505,6 +633,8 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
     }
     if (f.point_kinetic) f.point_kinetic[p] = ke;
   }
+  if (failed_point != std::numeric_limits<Index>::max())
+    fail_mass(m, "point", failed_point, f.point_mass[failed_point] + dm_point_[failed_point]);
 }
 
 }  // namespace stagger

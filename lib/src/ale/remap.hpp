@@ -51,7 +51,8 @@ class Remapper {
 
  private:
   void zone_gradients(const double* q, bool limiter, double* gx, double* gy, double* lo, double* hi);
-  void point_gradients(const double* q, bool limiter, double* gx, double* gy);
+  void point_gradients(const double* qa, const double* qb, bool limiter, double* gax, double* gay, double* gbx,
+                       double* gby);
 
   const Mesh& mesh_;
   std::vector<Index> side_zone_;     // per corner: the zone across the corner's side, -1 if none
@@ -66,8 +67,17 @@ class Remapper {
   std::vector<double> zlsq_, plsq_;  // per zone / point: the 2x2 pseudo-inverse (xx, xy, yy)
   std::vector<double> qgx_, qgy_, qmin_, qmax_, vgx_, vgy_, wgx_, wgy_;
   std::vector<double> crho_, ccx_, ccy_, cgx_, cgy_;  // per corner: density, centroid, gradient
-  std::vector<double> dm_zone_, dm_corner_, dm_point_, dpx_, dpy_, dke_, dq_;
-  std::vector<char> zone_touched_, point_touched_;
+  std::vector<double> gox_, goy_;  // per zone: the mean of the old vertices (the corners' centre point)
+  std::vector<double> dm_point_, dpx_, dpy_, dke_;
+  std::vector<char> point_touched_;
+  // The fluxes are computed face by face (in parallel) into slots, then summed per zone,
+  // corner and point in the order a serial sweep over the zones would add them, so the
+  // result is bitwise the same on any number of threads. Slots: 2c + h for half h of the
+  // side of corner c (from the zone that owns it, the lower-numbered), 2 nc + c for the
+  // centre segment of corner c. Lists: slot * 2 + 1 where the flux is subtracted.
+  std::vector<double> flux_mass_, flux_q_, seg_px_, seg_py_, seg_ke_;
+  std::vector<char> flux_active_;
+  std::vector<Index> zone_list_begin_, zone_list_, corner_list_begin_, corner_list_, point_list_begin_, point_list_;
   long repaired_ = 0;
 };
 

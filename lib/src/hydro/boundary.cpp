@@ -9,6 +9,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "hydro/kernels/geometry.hpp"
 #include "stagger/error.hpp"
 
 namespace stagger {
@@ -349,8 +350,12 @@ void apply_constraints(const Simulation::Impl& s, std::span<double> vx, std::spa
   }
 }
 
-void add_pressure_forces(const Simulation::Impl& s, std::span<const double> x, std::span<const double> y, double t,
-                         std::span<double> fx, std::span<double> fy) {
+namespace {
+template <class Geometry>
+void pressure_forces_in(const Simulation::Impl& s, std::span<const double> x, std::span<const double> y, double t,
+                        std::span<double> fx, std::span<double> fy) {
+  std::fill(fx.begin(), fx.end(), 0.0);
+  std::fill(fy.begin(), fy.end(), 0.0);
   for (const auto& edge : s.pressure_edges) {
     const double p = s.problem.boundaries[edge.bc].pressure(t);
     if (!std::isfinite(p)) {
@@ -366,6 +371,17 @@ void add_pressure_forces(const Simulation::Impl& s, std::span<const double> x, s
     fy[edge.a] += gy;
     fx[edge.b] += gx;
     fy[edge.b] += gy;
+  }
+  Geometry::scale_surface_forces(x, fx, fy);
+}
+}  // namespace
+
+void pressure_forces(const Simulation::Impl& s, std::span<const double> x, std::span<const double> y, double t,
+                     std::span<double> fx, std::span<double> fy) {
+  if (s.rz) {
+    pressure_forces_in<RzGeometry>(s, x, y, t, fx, fy);
+  } else {
+    pressure_forces_in<PlanarGeometry>(s, x, y, t, fx, fy);
   }
 }
 

@@ -15,9 +15,10 @@ void setup_boundaries(Simulation::Impl& s);
 // at time t on (vx, vy). Returns nothing; the caller accounts for the work.
 void apply_constraints(const Simulation::Impl& s, std::span<double> vx, std::span<double> vy, double t);
 
-// Adds the applied-pressure forces at time t on the positions (x, y) into (fx, fy).
-void add_pressure_forces(const Simulation::Impl& s, std::span<const double> x, std::span<const double> y, double t,
-                         std::span<double> fx, std::span<double> fy);
+// Sets (fx, fy) to the applied-pressure forces at time t on the positions (x, y): per unit
+// depth, or in rz per radian (the geometry policy's scale_surface_forces; docs/algorithm.md §19).
+void pressure_forces(const Simulation::Impl& s, std::span<const double> x, std::span<const double> y, double t,
+                     std::span<double> fx, std::span<double> fy);
 
 // No point through a wall (docs/algorithm.md §10): the lowest point whose step
 // x^n -> x^n + dt v_bar (v_bar from vx/vy and vx_new/vy_new) leaves the domain through a wall

@@ -125,6 +125,49 @@ void setup_axis(Mesh& m) {
 
 }  // namespace
 
+// rz (docs/algorithm.md §19): point_mass holds the planar masses sum_c rho^0 A_c^0; the true
+// point mass is that times r_p^0 (zero on the axis). The axis points' corners keep
+// k_c = rho^0 A_c^0 s_c^0, s_c the radii of the corner's neighbours in its zone (the next
+// vertices off the axis when both are on it).
+void Simulation::Impl::setup_rz_masses() {
+  const Mesh& m = mesh();
+  for (Index p = 0; p < m.num_points(); ++p) {
+    if (m.x[p] != 0) {
+      point_mass[p] *= m.x[p];
+      continue;
+    }
+    axis_points.push_back(p);
+    for (Index j = m.point_corner_begin[p]; j < m.point_corner_begin[p + 1]; ++j) {
+      const Index c = m.point_corners[j], z = m.corner_zone[c];
+      const Index b = m.zone_corner_begin[z];
+      const int n = m.zone_corner_begin[z + 1] - b, k = c - b;
+      // The two neighbours of k; if both are on the axis, the nearest vertices off it.
+      int back = 1, ahead = 1;
+      if (m.x[m.corner_point[b + (k + n - 1) % n]] == 0 && m.x[m.corner_point[b + (k + 1) % n]] == 0) {
+        while (back < n && m.x[m.corner_point[b + (k - back + n) % n]] == 0) ++back;
+        while (ahead < n && m.x[m.corner_point[b + (k + ahead) % n]] == 0) ++ahead;
+      }
+      const Index ra = m.corner_point[b + (k - (back < n ? back : 1) + n) % n];
+      const Index rb = m.corner_point[b + (k + (ahead < n ? ahead : 1)) % n];
+      const ZoneVertices v = load_vertices(m, z);
+      double ca[kMaxZoneVertices];
+      PlanarGeometry::corner_areas(v, ca);
+      const double s = m.x[ra] + m.x[rb];
+      if (!(s > 0)) {
+        std::ostringstream msg;
+        msg << "geometry = \"rz\": " << zone_label(m, z) << " lies on the axis x = 0 (every vertex has x = 0)";
+        throw Error(msg.str());
+      }
+      axis_corner.push_back(c);
+      axis_ref_a.push_back(ra);
+      axis_ref_b.push_back(rb);
+      axis_moment.push_back(rho[z] * ca[k] * s);
+    }
+    axis_corner_begin.push_back(static_cast<Index>(axis_corner.size()));
+    point_mass[p] = 0;
+  }
+}
+
 Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
   problem.validate();
   rz = problem.options.geometry == CoordinateSystem::rz;
@@ -169,7 +212,7 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
   allocate_state(*this);
 
   // Initial density and energy at zone centres; corner masses rho^0 A_c^0 (docs/algorithm.md §2).
-  std::vector<double> corner_area(kMaxZoneVertices);
+  std::vector<double> corner_area(kMaxZoneVertices), corner_volume(kMaxZoneVertices);
   const bool subzonal = opt.hourglass == Hourglass::subzonal || opt.hourglass == Hourglass::subzonal_triangles;
   const Subzones subzones = opt.hourglass == Hourglass::subzonal ? Subzones::corners : Subzones::triangles;
   for (Index z = 0; z < nz; ++z) {
@@ -207,18 +250,16 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
     }
     e[z] = e0;
     rho[z] = rho0;
-    if (rz) {
-      RzGeometry::corner_volumes(v, corner_area.data());  // per radian (docs/algorithm.md §19)
-    } else {
-      PlanarGeometry::corner_areas(v, corner_area.data());
-    }
+    PlanarGeometry::corner_areas(v, corner_area.data());
+    // rz: the zone mass is rho^0 V (per radian), the point mass r_p^0 sum_c rho^0 A_c^0
+    // (times r_p^0 below; zero on the axis); docs/algorithm.md §19.
+    if (rz) RzGeometry::corner_volumes(v, corner_volume.data());
     if (subzonal) subzonal_masses(v, rho0, subzones, corner_mass.data() + m.zone_corner_begin[z]);
     for (int k = 0; k < v.n; ++k) {
       const Index c = m.zone_corner_begin[z] + k;
       const double mc = rho0 * corner_area[k];
-      zone_mass[z] += mc;
-      // rz: the axis points are massless (their acceleration is the area-weighted one).
-      if (!(rz && m.x[m.corner_point[c]] == 0)) point_mass[m.corner_point[c]] += mc;
+      zone_mass[z] += rz ? rho0 * corner_volume[k] : mc;
+      point_mass[m.corner_point[c]] += mc;
       if (!ale_corner_mass.empty()) ale_corner_mass[c] = mc;
     }
     if (mat.strength) {
@@ -229,11 +270,9 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
         throw Error("region '" + setup.region + "': initial deviatoric stress is not finite in " + zone_label(m, z));
     }
   }
+  if (rz) setup_rz_masses();
   for (Index p = 0; p < np; ++p) {
-    if (rz && m.x[p] == 0) {
-      axis_points.push_back(p);
-      continue;
-    }
+    if (rz && m.x[p] == 0) continue;
     if (!(point_mass[p] > 0)) {
       std::ostringstream msg;
       msg << "point " << p << " (" << m.x[p] << ", " << m.y[p] << ") has no mass: a zone around it is degenerate";

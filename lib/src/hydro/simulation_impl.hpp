@@ -79,10 +79,13 @@ struct Simulation::Impl {
   std::vector<double> corner_fx, corner_fy;
   std::vector<double> corner_mass;      // constant subzone masses (the subzonal hourglass options only)
   std::vector<double> ale_corner_mass;  // median-mesh corner masses, the remap's subcells (ALE only)
-  // Axisymmetric geometry (docs/algorithm.md §19): planar corner masses rho A_c of the force
-  // geometry, and the acceleration of the (massless) axis points with the last forces.
-  std::vector<double> corner_area_mass, axis_ax, axis_ay;
+  // Axisymmetric geometry (docs/algorithm.md §19): the acceleration of the (massless) axis
+  // points with the last forces, and (set-up constants) their corners in CSR form: corner,
+  // the two neighbours whose radii s_c measure its radial stretch, k_c = rho^0 A_c^0 s_c^0.
+  std::vector<double> axis_ax, axis_ay;
   std::vector<Index> axis_points;  // points on x = 0 (rz)
+  std::vector<Index> axis_corner_begin{0}, axis_corner, axis_ref_a, axis_ref_b;
+  std::vector<double> axis_moment;
   bool rz = false;
   std::vector<EdgeContinuation> continuation;
 
@@ -143,7 +146,8 @@ struct Simulation::Impl {
   void recompute_state();
   // Full force evaluation at the current state (first cycle, fresh predictor).
   void evaluate_forces_now();
-  void weight_rz_forces();
+  void weight_rz_forces(const double* px, double h_position);
+  void setup_rz_masses();
   double kinetic_energy() const;
   double internal_energy() const;
 };

@@ -83,7 +83,6 @@ const std::array kFields = {
     StateField{"corner_mass", &I::corner_mass, Entity::corner, Presence::subzonal, kC | kR},
     // Median-mesh corner masses: constant in the Lagrangian phase, carried by the ALE remap.
     StateField{"ale_corner_mass", &I::ale_corner_mass, Entity::corner, Presence::ale, kC | kR},
-    StateField{"corner_area_mass", &I::corner_area_mass, Entity::corner, Presence::rz},
 };
 
 }  // namespace

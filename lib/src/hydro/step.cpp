@@ -224,9 +224,9 @@ std::int64_t Simulation::Impl::zone_forces(const double* px, const double* py, d
                           dt_half,
                           t_eval,
                           data_or_null(corner_mass)};
-  const ZoneForceOutput out{corner_fx.data(),       corner_fy.data(),       q.data(),
-                            data_or_null(rho_half), data_or_null(c_half),   data_or_null(sxx_half),
-                            data_or_null(syy_half), data_or_null(sxy_half), data_or_null(corner_area_mass)};
+  const ZoneForceOutput out{corner_fx.data(),       corner_fy.data(),      q.data(),
+                            data_or_null(rho_half), data_or_null(c_half),  data_or_null(sxx_half),
+                            data_or_null(syy_half), data_or_null(sxy_half)};
   const HydroOptions& o = problem.options;
   std::int64_t failure = kNoFailure;
   for_each_range(*this, [&](const ZoneRange& r, const auto& eos, const ZoneModel& m) {
@@ -267,23 +267,21 @@ void Simulation::Impl::evaluate_forces_now() {
   if (edge_viscosity) edge_forces(x.data(), y.data(), vx.data(), vy.data());
   // A distributed run: the outermost ghosts' edge viscosity lacks neighbours; their owners' forces replace it.
   if (collective) collective->exchange(*this);
-  if (rz) weight_rz_forces();
+  if (rz) weight_rz_forces(x.data(), 0.0);
 }
 
 // rz: the area-weighted corner forces made true ones (docs/algorithm.md §19).
-void Simulation::Impl::weight_rz_forces() {
-  weight_rz_corner_forces(mesh().num_points(), point_corner_begin.data(), point_corners.data(), corner_area_mass.data(),
-                          point_mass.data(), corner_fx.data(), corner_fy.data(), axis_ax.data(), axis_ay.data());
+void Simulation::Impl::weight_rz_forces(const double* px, double h_position) {
+  weight_rz_corner_forces(mesh().num_corners(), corner_point.data(), px, x.data(), vx.data(), h_position,
+                          axis_points.size(), axis_points.data(), axis_corner_begin.data(), axis_corner.data(),
+                          axis_ref_a.data(), axis_ref_b.data(), axis_moment.data(), corner_fx.data(), corner_fy.data(),
+                          axis_ax.data(), axis_ay.data());
 }
 
 // External point forces at the half step: applied pressures (boundary work) and momentum
 // sources (source work), on the half-step geometry (docs/algorithm.md §10).
 void Simulation::Impl::external_forces(double t_half) {
-  std::fill(ext_fx.begin(), ext_fx.end(), 0.0);
-  std::fill(ext_fy.begin(), ext_fy.end(), 0.0);
-  add_pressure_forces(*this, x_half, y_half, t_half, ext_fx, ext_fy);
-  if (rz)  // per radian: the planar force times the point's radius
-    for (Index p = 0; p < mesh().num_points(); ++p) ext_fx[p] *= x_half[p], ext_fy[p] *= x_half[p];
+  pressure_forces(*this, x_half, y_half, t_half, ext_fx, ext_fy);
   if (!(problem.sources && problem.sources->momentum)) return;
   std::fill(src_fx.begin(), src_fx.end(), 0.0);
   std::fill(src_fy.begin(), src_fy.end(), 0.0);
@@ -446,7 +444,7 @@ bool Simulation::Impl::try_step(double dt) {
   }
   // 5. Edge viscosity forces, added to f^{n+1/2}.
   if (edge_viscosity) edge_forces(x_half.data(), y_half.data(), vx_star.data(), vy_star.data());
-  if (rz) weight_rz_forces();  // rz: true corner forces from the area-weighted ones
+  if (rz) weight_rz_forces(px, 0.5 * dt);  // rz: true corner forces from the area-weighted ones
 
   // 6. P2: momentum v^{n+1} with the same corner forces, and the constraints.
   correct_velocity(dt, t_new);

@@ -7,6 +7,7 @@
 // every zone of the loop has it (4 for all-quad meshes), 0 for "read v.n".
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 #include "mesh/polygon.hpp"
 #include "stagger/mesh.hpp"
@@ -117,6 +118,9 @@ struct PlanarGeometry {
     return div / area;
   }
 
+  // Point forces of boundary tractions summed on the planar edge elements: as they are.
+  static void scale_surface_forces(std::span<const double>, std::span<double>, std::span<double>) {}
+
   // L_ij = (1/A) sum_c u_i a_c,j.
   [[gnu::always_inline]] static VelocityGradient velocity_gradient(int n, const double* ux, const double* uy,
                                                                    const double* ax, const double* ay, double area) {
@@ -170,6 +174,12 @@ struct RzGeometry : PlanarGeometry {
       rate += ux[k] * dvdx + uy[k] * dvdy;
     }
     return rate / (6.0 * volume);
+  }
+
+  // Per radian, the r-weighted surface element: the planar point force times the point's
+  // radius (zero on the axis), as the corner forces (docs/algorithm.md §19).
+  static void scale_surface_forces(std::span<const double> x, std::span<double> fx, std::span<double> fy) {
+    for (std::size_t p = 0; p < x.size(); ++p) fx[p] *= x[p], fy[p] *= x[p];
   }
 
   // Median-mesh corner volumes int r dA (the true corner masses rho^0 V_c at set-up).

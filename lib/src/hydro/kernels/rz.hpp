@@ -38,34 +38,43 @@ template <int N = 0>
   }
 }
 
-// The corner forces from area-weighted to true: point p's corners are scaled by w_p = M_p /
-// m^A_p, M_p its (constant) mass, m^A_p = sum_c rho_z A_c its planar mass on the force
-// geometry, so that dv/dt = F_p / M_p is the area-weighted acceleration sum_c f_c / m^A_p.
-// The axis points are massless (M_p = 0, w_p = 0): their acceleration is kept in axis_a.
-inline void weight_rz_corner_forces(Index np, const Index* point_corner_begin, const Index* point_corners,
-                                    const double* corner_area_mass, const double* point_mass, double* fx, double* fy,
+// The radius of point p on the force geometry: px[p], or x^n + h v^n when px is null (as Z1).
+[[gnu::always_inline]] inline double force_radius(const double* px, const double* x, const double* vx, double h,
+                                                  Index p) {
+  return px ? px[p] : x[p] + h * vx[p];
+}
+
+// The corner forces from area-weighted to true (docs/algorithm.md §19): every corner of point
+// p is scaled by its radius r_p on the force geometry, F_c = r_p f^A_c. With the constant point
+// mass M_p = r_p^0 m^A_p(0) the acceleration F_p / M_p = sum_c f^A_c / m^A_p(t) is the
+// area-weighted one with the planar mass m^A_p(t) = m^A_p(0) r_p^0 / r_p (rho dA = dm / r),
+// and the work r_p f^A_c . v_p is p dV exactly on rectangles. The axis points (r_p = 0) get
+// no force; their acceleration, kept in axis_a, uses the planar masses of their corners,
+// k_c / s_c with s_c the sum of the radii of the corner's two neighbours in its zone
+// (their radial stretch; k_c = rho^0 A_c^0 s_c^0), which is what the same corners give at
+// the points next to the axis.
+inline void weight_rz_corner_forces(Index nc, const Index* corner_point, const double* px, const double* x,
+                                    const double* vx, double h, std::size_t axis_count, const Index* axis_points,
+                                    const Index* axis_corner_begin, const Index* axis_corner, const Index* axis_ref_a,
+                                    const Index* axis_ref_b, const double* axis_moment, double* fx, double* fy,
                                     double* axis_ax, double* axis_ay) {
-#pragma omp parallel for schedule(static) if (np > kParallelMin)
-  for (Index p = 0; p < np; ++p) {
+  for (std::size_t i = 0; i < axis_count; ++i) {
     double mass = 0, Fx = 0, Fy = 0;
-    for (Index k = point_corner_begin[p]; k < point_corner_begin[p + 1]; ++k) {
-      const Index c = point_corners[k];
-      mass += corner_area_mass[c];
+    for (Index j = axis_corner_begin[i]; j < axis_corner_begin[i + 1]; ++j) {
+      const Index c = axis_corner[j];
+      const double s = force_radius(px, x, vx, h, axis_ref_a[j]) + force_radius(px, x, vx, h, axis_ref_b[j]);
+      mass += axis_moment[j] / s;
       Fx += fx[c];
       Fy += fy[c];
     }
-    double w = 0;
-    if (point_mass[p] > 0) {
-      w = point_mass[p] / mass;
-    } else {
-      axis_ax[p] = Fx / mass;
-      axis_ay[p] = Fy / mass;
-    }
-    for (Index k = point_corner_begin[p]; k < point_corner_begin[p + 1]; ++k) {
-      const Index c = point_corners[k];
-      fx[c] *= w;
-      fy[c] *= w;
-    }
+    axis_ax[axis_points[i]] = Fx / mass;
+    axis_ay[axis_points[i]] = Fy / mass;
+  }
+#pragma omp parallel for schedule(static) if (nc > kParallelMin)
+  for (Index c = 0; c < nc; ++c) {
+    const double w = force_radius(px, x, vx, h, corner_point[c]);
+    fx[c] *= w;
+    fy[c] *= w;
   }
 }
 

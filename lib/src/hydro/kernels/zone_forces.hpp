@@ -51,7 +51,6 @@ struct ZoneForceOutput {
   double* q;                               // bulk q
   double *rho_half, *c_half;               // half-step density and C (edge viscosity)
   double *sxx_half, *syy_half, *sxy_half;  // S^{n+1/2} (strength)
-  double* corner_area_mass;                // rho A_c per corner (rz)
 };
 
 // Z1 over the zones [begin, end) of one material (EOS `eos`, constants `m`). Returns the
@@ -183,11 +182,12 @@ std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, con
           add_tensor_viscosity_forces(n, v.x, v.y, wx, wy, area, Geometry::template characteristic_length<N>(v, area),
                                       rho, C, o.q1, o.q2, out.fx + b, out.fy + b);
     if constexpr (Geometry::kRz) {
-      // Area-weighted: the planar corner masses for the point weights, the hoop body force.
-      double ca[kMaxZoneVertices];
-      Geometry::template corner_areas<N>(v, ca);
-      for (int k = 0; k < n; ++k) out.corner_area_mass[b + k] = rho * ca[k];
-      if (m.strength) add_hoop_forces(n, sh, ca, measure / area, out.fx + b, out.fy + b);
+      // Area-weighted: the hoop body force on the planar corner areas.
+      if (m.strength) {
+        double ca[kMaxZoneVertices];
+        Geometry::template corner_areas<N>(v, ca);
+        add_hoop_forces(n, sh, ca, measure / area, out.fx + b, out.fy + b);
+      }
     }
     // Hourglass force with v* (quads).
     if (hg > 0 && n == 4) add_hourglass_forces(v.x, v.y, ax, ay, area, wx, wy, rho, C, hg, fb, out.fx + b, out.fy + b);

@@ -54,6 +54,9 @@ def read_vtu(path):
             n = int(sizes[3 + b])
             chunks.append(zlib.decompress(raw[pos:pos + n]))
             pos += n
+        if attrs["type"] == "String":  # field data of rz runs: NUL-terminated strings (docs/output.md)
+            arrays[attrs.get("Name", "")] = [v.decode() for v in b"".join(chunks).split(b"\0") if v]
+            continue
         dtype = {"Float64": np.float64, "Float32": np.float32, "Int64": np.int64, "Int32": np.int32,
                  "UInt8": np.uint8, "Int8": np.int8, "UInt64": np.uint64}[attrs["type"]]
         values = np.frombuffer(b"".join(chunks), dtype)

@@ -7,6 +7,7 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkSmartPointer.h>
+#include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
@@ -128,6 +129,46 @@ TEST(VtkOutput, StrengthScenesWriteDeviatoricStressAndVonMises) {
     const double expected = std::sqrt(1.5 * (sxx * sxx + syy * syy + szz * szz + 2 * sxy * sxy));
     EXPECT_NEAR(von_mises->GetComponent(z, 0), expected, 1e-12 * expected) << "zone " << z;
     EXPECT_GT(expected, 1e6);
+  }
+}
+
+// The rz convention is written into the .vtu's field data and summary.json (docs/output.md);
+// planar outputs carry neither key (they stay byte for byte what they were).
+TEST(VtkOutput, RzRunsRecordTheirConventionInTheVtuAndTheSummaryPlanarRunsDoNot) {
+  ScratchDirectory scratch("vtu_rz");
+  for (const CoordinateSystem geometry : {CoordinateSystem::planar, CoordinateSystem::rz}) {
+    Problem problem = io_test::sod_problem(6, 1e-3);
+    problem.options.geometry = geometry;
+    Simulation simulation(std::move(problem));
+    simulation.step();
+    const bool rz = geometry == CoordinateSystem::rz;
+    const std::string vtu = scratch.file(rz ? "rz.vtu" : "planar.vtu");
+    write_vtu(vtu, simulation);
+    const auto grid = read_vtu(vtu);
+    auto* name = vtkStringArray::SafeDownCast(grid->GetFieldData()->GetAbstractArray("geometry"));
+    auto* convention = vtkStringArray::SafeDownCast(grid->GetFieldData()->GetAbstractArray("geometry_convention"));
+    ASSERT_NE(grid->GetFieldData()->GetArray("TimeValue"), nullptr);
+    const std::string summary_path = scratch.file(rz ? "rz.json" : "planar.json");
+    RunSummary summary;
+    summary.status = "completed";
+    write_summary(summary_path, simulation, summary);
+    const io_test::Json json = io_test::parse_json_file(summary_path);
+    if (!rz) {
+      EXPECT_EQ(name, nullptr);
+      EXPECT_EQ(convention, nullptr);
+      EXPECT_FALSE(json.has("geometry"));
+      EXPECT_FALSE(json.has("geometry_convention"));
+      continue;
+    }
+    ASSERT_NE(name, nullptr);
+    ASSERT_EQ(name->GetNumberOfValues(), 1);
+    EXPECT_EQ(name->GetValue(0), "rz");
+    ASSERT_NE(convention, nullptr);
+    EXPECT_NE(convention->GetValue(0).find("per radian"), std::string::npos);
+    EXPECT_NE(convention->GetValue(0).find("x = r, y = z"), std::string::npos);
+    ASSERT_TRUE(json.has("geometry"));
+    EXPECT_EQ(json["geometry"].text, "rz");
+    EXPECT_EQ(json["geometry_convention"].text, convention->GetValue(0));
   }
 }
 

@@ -263,28 +263,34 @@ class ElasticPlasticPiston {
 /// plastic_pressure_exact, plastic_density_exact.
 Reference piston_reference(const PistonParameters& parameters = {});
 
-/// Howell & Ball's beryllium shell (JCP 175, 2002; docs/verification.md §8).
+/// Howell & Ball's beryllium shell (JCP 175, 2002; docs/verification.md §8), or with
+/// `spherical` its spherical analogue, Verney's problem (docs/derivations.md section 2.1).
 struct ShellParameters {
   double inner_radius = 0.08, outer_radius = 0.1;
-  double velocity = 417.1;  ///< V0: initial radial velocity -V0 Ri / r
+  double velocity = 417.1;  ///< V0: initial radial velocity -V0 Ri / r (spherical: -V0 Ri^2 / r^2)
   double density = 1845.0;
   double yield_stress = 330e6;
+  bool spherical = false;  ///< a spherical shell (an rz scene) instead of a cylindrical one
 };
 
 /// Incompressible, rigid-perfectly-plastic collapse of a thick cylindrical shell (plane
 /// strain, von Mises with sigma_eq = sqrt(3/2 S:S) = Y, i.e. shear yield k = Y / sqrt(3)).
 /// The kinetic energy per unit length of a full circle, pi rho (Ri Ri')^2 ln(Ro/Ri), decreases
 /// at the plastic dissipation rate (4 pi / sqrt(3)) Y |Ri Ri'| ln(Ro/Ri); integrating in
-/// r = Ri^2 gives the velocity in closed form and the time by quadrature.
+/// r = Ri^2 gives the velocity in closed form and the time by quadrature. With
+/// `spherical` (Verney 1968): a thick spherical shell, kinetic energy of the full sphere
+/// 2 pi rho (Ri^2 Ri')^2 (1/Ri - 1/Ro), dissipation 8 pi Y |Ri^2 Ri'| ln(Ro/Ri), integrated
+/// in s = Ri^3 (docs/derivations.md section 2.1). Energies are per unit length of the full
+/// circle, resp. of the full sphere.
 class HowellBallShell {
  public:
   explicit HowellBallShell(const ShellParameters& parameters = {});
   double inner_radius(double t) const;    ///< stays at the stopping radius after stopping_time
-  double outer_radius(double t) const;    ///< Ro^2 - Ri^2 is constant
+  double outer_radius(double t) const;    ///< Ro^2 - Ri^2 (spherical: Ro^3 - Ri^3) is constant
   double inner_velocity(double t) const;  ///< dRi/dt (negative, 0 after stopping)
-  /// Kinetic energy per unit length of the full circle.
+  /// Kinetic energy per unit length of the full circle (spherical: of the full sphere).
   double kinetic_energy(double t) const;
-  /// Plastic dissipation rate per unit length of the full circle.
+  /// Plastic dissipation rate per unit length of the full circle (spherical: of the full sphere).
   double dissipation_rate(double t) const;
   double stopping_time() const { return stopping_time_; }
   double inner_stopping_radius() const { return inner_stop_; }
@@ -292,19 +298,24 @@ class HowellBallShell {
   const ShellParameters& parameters() const { return parameters_; }
 
  private:
-  double inner_radius_squared(double t) const;
-  double velocity_at(double r2) const;  // Ri Ri' as a function of r2 = Ri^2
+  double inner_power(double t) const;                        // s = Ri^n (n = 2, spherical 3) at time t
+  double velocity_at(double s) const;                        // |Ri^(n-1) Ri'| as a function of s
+  double time_integrand(double sigma, double s_stop) const;  // dt/dsigma, s = s_stop + sigma^2
+  double shape(double s) const;                              // K / (k rho Q^2): ln(Ro/Ri), spherical 1/Ri - 1/Ro
+  double radius(double s) const;                             // s^(1/n)
+  double power(double r) const;                              // r^n
   ShellParameters parameters_;
-  double c_ = 0;  // Ro^2 - Ri^2
+  double n_ = 2;     // the power: 2 cylindrical, 3 spherical
+  double c_ = 0;     // Ro^n - Ri^n
+  double beta_ = 0;  // Q^2 shape(s) = beta (F(s) - F(s_stop))
   double inner_stop_ = 0, stopping_time_ = 0;
-  std::vector<double> sigma_, time_;  // r2 = Ri_stop^2 + sigma^2; time_[k] = t(sigma_[k])
+  std::vector<double> sigma_, time_;  // s = Ri_stop^n + sigma^2; time_[k] = t(sigma_[k])
 };
 
-/// Diagnostics inner_radius / outer_radius (mean radius of the points of the mesh tags
-/// "inner" / "outer"), inner_radius_exact / outer_radius_exact, asymmetry (max over the two
-/// tags of (max r - min r) / mean r), kinetic_energy, internal_energy,
-/// kinetic_energy_exact (the analytic one scaled to the simulated sector by its mass), and
-/// inner/outer_stopping_radius_exact, stopping_time_exact.
+/// Diagnostics inner_radius / outer_radius (mean radius sqrt(x^2 + y^2) of the points of the mesh
+/// tags "inner" / "outer"; in rz the spherical radius), inner_radius_exact / outer_radius_exact, asymmetry (max over
+/// the two tags of (max r - min r) / mean r), kinetic_energy, internal_energy, kinetic_energy_exact (the analytic one
+/// scaled to the simulated sector by its mass), and inner/outer_stopping_radius_exact, stopping_time_exact.
 Reference be_shell_reference(const ShellParameters& parameters = {});
 
 /// A Taylor bar moving in -y onto the rigid wall y = y0 (the lowest y of the initial mesh):

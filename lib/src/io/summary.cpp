@@ -45,6 +45,12 @@ void write_summary(const std::string& path, const Simulation& simulation, const 
   text += "  \"threads\": " + std::to_string(summary.threads) + ",\n";
   text += "  \"ranks\": " + std::to_string(summary.ranks) + ",\n";
   text += "  \"status\": " + json_string(summary.status) + ",\n";
+  // The rz convention (docs/output.md): only rz runs carry it (planar summaries stay as they were).
+  if (simulation.problem().options.geometry == CoordinateSystem::rz) {
+    text += "  \"geometry\": \"rz\",\n";
+    text += "  \"geometry_convention\": " +
+            json_string("x = r, y = z, axis x = 0; masses, volumes, energies and momenta per radian") + ",\n";
+  }
   // Only a stopped run has it: its last dump holds the last good state.
   if (summary.last_good_state) {
     text += "  \"last_good_state\": {\"file\": " + json_string(summary.last_dump) +

@@ -9,6 +9,7 @@
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
+#include <vtkStringArray.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridWriter.h>
@@ -183,6 +184,18 @@ void add_state(vtkUnstructuredGrid* grid, const Simulation& simulation, const st
   cycle->SetNumberOfValues(1);
   cycle->SetValue(0, static_cast<int>(simulation.cycle()));
   grid->GetFieldData()->AddArray(cycle);
+  // The rz convention (docs/output.md). Only rz runs carry it, so that planar .vtu files stay
+  // byte for byte what they were; no `geometry` field means planar.
+  if (simulation.problem().options.geometry == CoordinateSystem::rz) {
+    vtkNew<vtkStringArray> geometry;
+    geometry->SetName("geometry");
+    geometry->InsertNextValue("rz");
+    grid->GetFieldData()->AddArray(geometry);
+    vtkNew<vtkStringArray> convention;
+    convention->SetName("geometry_convention");
+    convention->InsertNextValue("x = r, y = z, axis x = 0; masses, volumes, energies and momenta per radian");
+    grid->GetFieldData()->AddArray(convention);
+  }
 }
 
 void add_int_field(vtkDataSetAttributes* data, const char* name, Index count, const std::function<int(Index)>& value) {

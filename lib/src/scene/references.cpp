@@ -176,7 +176,13 @@ void read_verification_section(Section& section, const Problem& problem, const S
     parameters.outer_radius = positive(section, "outer_radius", parameters.outer_radius);
     if (!(parameters.outer_radius > parameters.inner_radius)) section.fail("outer_radius", "must exceed inner_radius");
     parameters.velocity = positive(section, "velocity", parameters.velocity);
-    control.reference = be_shell_reference(parameters);
+    // A planar scene is Howell and Ball's cylindrical shell, an rz scene Verney's spherical one.
+    parameters.spherical = problem.options.geometry == CoordinateSystem::rz;
+    try {
+      control.reference = be_shell_reference(parameters);
+    } catch (const Error& failure) {
+      section.fail("reference", failure.what());
+    }
     setup.parameters = parameters;
   } else if (reference == "detonation") {
     const Material& material = reference_material(section, problem);

@@ -106,12 +106,14 @@ Reference be_shell_reference(const ShellParameters& parameters) {
     const EnergyAudit energy = simulation.energy();
     diagnostics.emplace_back("kinetic_energy", energy.kinetic);
     diagnostics.emplace_back("internal_energy", energy.internal);
-    // The analytic energy is per full circle: scale by the simulated sector's share of the mass.
+    // The analytic energy is per full circle (spherical: per full sphere): scale by the simulated
+    // sector's share of the mass (in rz the zone masses are per radian, and so is the result).
     const auto mass = simulation.zone_mass();
     const double total_mass = std::accumulate(mass.begin(), mass.end(), 0.0);
     const ShellParameters& p = shell.parameters();
-    const double full_mass =
-        p.density * std::numbers::pi * (p.outer_radius * p.outer_radius - p.inner_radius * p.inner_radius);
+    const double ri = p.inner_radius, ro = p.outer_radius;
+    const double full_mass = p.spherical ? p.density * 4.0 / 3.0 * std::numbers::pi * (ro * ro * ro - ri * ri * ri)
+                                         : p.density * std::numbers::pi * (ro * ro - ri * ri);
     diagnostics.emplace_back("kinetic_energy_exact", shell.kinetic_energy(t) * total_mass / full_mass);
   };
 }

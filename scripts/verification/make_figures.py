@@ -369,7 +369,7 @@ def fig_saltzman(runs, out):
         zs = sorted_by(z, "x")
         axes[0].plot(zs["x"], zs["exact_density"], "k-", lw=0.8)
     axes[0].set_ylabel("density")
-    axes[0].set_title("Saltzman piston (default: tensor q + subzonal triangles 2): every zone; black: exact")
+    axes[0].set_title("Saltzman piston (scene: tensor q + subzonal triangles 2.5): every zone; black: exact")
     axes[0].legend()
     for name, style in (("saltzman_default", "C0-"), ("saltzman_edge_fb", "C4-"), ("saltzman_edge_gamma", "C1-"),
                         ("saltzman_edge_none", "C3-"), ("saltzman_bulk_fb", "C2-")):
@@ -396,7 +396,7 @@ def fig_saltzman(runs, out):
     z = runs["saltzman_default"].zones()
     sc = ax.scatter(z["x"], z["y"], c=z["density"], s=8, cmap="viridis", vmin=0, vmax=5)
     ax.set_aspect("equal")
-    ax.set_title("Saltzman, default numerics (tensor q + subzonal triangles 2), t = 0.6: density at zone centres")
+    ax.set_title("Saltzman, the scene (tensor q + subzonal triangles 2.5), t = 0.6: density at zone centres")
     fig.colorbar(sc, ax=ax)
     out.append(save(fig, "verif_saltzman_map.png"))
 

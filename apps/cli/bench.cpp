@@ -232,8 +232,8 @@ std::vector<RunSpec> ladder_runs(const Context& context) {
         // ALE beside the Lagrangian ladders of the same numerics (docs/ale.md): a rezone and
         // remap after every cycle (Sedov's third rung needs ~17000 cycles: beyond the limit).
         {"sod", "bulk_eulerian", {{"numerics.viscosity", "bulk"}, {"ale.mode", "eulerian"}}, {1, 2, 4, 8}},
-        {"noh", "edge_ale", {{"numerics.viscosity", "edge"}, {"ale.mode", "ale"}}, {1, 2}},
-        {"sedov", "edge_ale", {{"numerics.viscosity", "edge"}, {"ale.mode", "ale"}}, {1, 2}},
+        {"noh", "edge_ale", {{"numerics.viscosity", "edge"}, {"ale.mode", "ale"}, {"ale.remap_every", "1"}}, {1, 2}},
+        {"sedov", "edge_ale", {{"numerics.viscosity", "edge"}, {"ale.mode", "ale"}, {"ale.remap_every", "1"}}, {1, 2}},
     };
   }
   if (!context.ladders.empty()) {

@@ -78,6 +78,15 @@ void run(const std::string& stagger, const fs::path& scene, const std::string& s
   const int code = std::system(command.c_str());
   const std::string summary = read_text(out / "summary.json");
   m.status = code == 0 && summary.find("\"status\": \"completed\"") != std::string::npos ? "completed" : "failed";
+  if (m.status == "failed") {
+    // Say why here, not only in the log: e.g. mpirun's refusal to run as root.
+    std::istringstream log(read_text(out / "run.log"));
+    std::string line, first;
+    while (first.empty() && std::getline(log, line))
+      if (line.find_first_not_of("- \t") != std::string::npos) first = line;
+    std::cerr << "stagger bench: scaling: a run failed: " << (first.empty() ? "no output" : first) << " (see "
+              << (out / "run.log").string() << ")\n";
+  }
   m.zones = json_number(summary, "zones");
   m.cycles = json_number(summary, "cycles");
   m.loop_seconds = json_number(summary, "loop_seconds");
@@ -159,7 +168,8 @@ int scaling_suite(const fs::path& scenes, const fs::path& out_dir, bool quick, i
   const bool identical = serial.status == "completed" && eight.status == "completed" &&
                          read_text(out_dir / "scaling_runs" / "serial" / "history.csv") ==
                              read_text(out_dir / "scaling_runs" / "np8" / "history.csv");
-  eight.status = identical ? "bitwise_as_serial" : "DIFFERS_FROM_SERIAL";
+  const bool both_ran = serial.status == "completed" && eight.status == "completed";
+  eight.status = identical ? "bitwise_as_serial" : both_ran ? "DIFFERS_FROM_SERIAL" : "failed";
   all.push_back(serial);
   all.push_back(eight);
 
@@ -180,7 +190,10 @@ int scaling_suite(const fs::path& scenes, const fs::path& out_dir, bool quick, i
     std::cout << "  speed-up 2 ranks / 1 rank: " << median_rate["2 ranks x 1 thread"] / one
               << ", 2 threads / 1 thread: " << median_rate["1 rank x 2 threads"] / one << "\n";
   std::cout << "  8 ranks (oversubscribed) vs serial, Sedov 40 x 40: "
-            << (identical ? "history.csv identical" : "history.csv DIFFERS") << "\n"
+            << (identical  ? "history.csv identical"
+                : both_ran ? "history.csv DIFFERS"
+                           : "a run failed")
+            << "\n"
             << "  -> " << csv_path.string() << "\n";
   int failed = identical ? 0 : 1;
   for (const Measurement& m : all)

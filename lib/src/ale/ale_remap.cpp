@@ -213,10 +213,13 @@ void AleRemap::fixup() {
   // the fix-up must not cool a cold solid into tension); the rest of the deficit is taken
   // from all zones in proportion to their energy above the floor. Nothing is clipped: the
   // total moved is exactly what the kinetic energy lost.
+  const auto energy_floor = [&](const ZoneRange& r) {
+    const Material& mat = s_.problem.materials[r.material];
+    return std::holds_alternative<IdealGas>(mat.eos) ? 0.0 : std::max(mat.min_energy, 0.0);
+  };
   double deficit = 0, capacity = 0;
   for (const ZoneRange& r : s_.ranges) {
-    const Material& mat = s_.problem.materials[r.material];
-    const double floor = std::holds_alternative<IdealGas>(mat.eos) ? 0.0 : std::max(mat.min_energy, 0.0);
+    const double floor = energy_floor(r);
     for (Index z = r.begin; z < r.end; ++z) {
       const double room = s_.zone_mass[z] * std::max(s_.e[z] - floor, 0.0);
       if (dE_[z] < -0.5 * room) {
@@ -235,8 +238,7 @@ void AleRemap::fixup() {
       throw Error(msg.str());
     }
     for (const ZoneRange& r : s_.ranges) {
-      const Material& mat = s_.problem.materials[r.material];
-      const double floor = std::holds_alternative<IdealGas>(mat.eos) ? 0.0 : std::max(mat.min_energy, 0.0);
+      const double floor = energy_floor(r);
       for (Index z = r.begin; z < r.end; ++z) {
         const double room = std::max(0.0, s_.zone_mass[z] * std::max(s_.e[z] - floor, 0.0) + dE_[z]);
         dE_[z] += deficit * (room / capacity);

@@ -31,30 +31,45 @@ namespace stagger {
 
 namespace {
 
-/// Points (double precision, z = 0) and cells (quads, triangles, polygons) of the mesh
-/// with the given point positions.
-vtkNew<vtkUnstructuredGrid> make_grid(const Mesh& mesh, std::span<const double> x, std::span<const double> y) {
+/// Points (double precision, z = 0) and cells (quads, triangles, polygons) of the mesh with
+/// the given point positions: all of them, or (a distributed run's piece) the listed zones
+/// and points, local[p] being point p's number in the piece.
+vtkNew<vtkUnstructuredGrid> make_grid(const Mesh& mesh, std::span<const double> x, std::span<const double> y,
+                                      const std::vector<Index>* zones = nullptr,
+                                      const std::vector<Index>* points = nullptr,
+                                      const std::vector<Index>* local = nullptr) {
   vtkNew<vtkUnstructuredGrid> grid;
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  const Index npoints = mesh.num_points();
-  points->SetNumberOfPoints(npoints);
-  for (Index p = 0; p < npoints; ++p) points->SetPoint(p, x[p], y[p], 0.0);
-  grid->SetPoints(points);
+  vtkNew<vtkPoints> xy;
+  xy->SetDataTypeToDouble();
+  const Index npoints = points ? static_cast<Index>(points->size()) : mesh.num_points();
+  xy->SetNumberOfPoints(npoints);
+  for (Index i = 0; i < npoints; ++i) {
+    const Index p = points ? (*points)[i] : i;
+    xy->SetPoint(i, x[p], y[p], 0.0);
+  }
+  grid->SetPoints(xy);
 
-  const Index nzones = mesh.num_zones();
-  vtkNew<vtkIdTypeArray> offsets;
-  offsets->SetNumberOfValues(nzones + 1);
-  vtkNew<vtkIdTypeArray> connectivity;
-  connectivity->SetNumberOfValues(mesh.num_corners());
+  const Index nzones = zones ? static_cast<Index>(zones->size()) : mesh.num_zones();
+  vtkNew<vtkIdTypeArray> offsets, connectivity;
   vtkNew<vtkUnsignedCharArray> types;
+  offsets->SetNumberOfValues(nzones + 1);
   types->SetNumberOfValues(nzones);
-  for (Index z = 0; z <= nzones; ++z) offsets->SetValue(z, mesh.zone_corner_begin[z]);
-  for (Index c = 0; c < mesh.num_corners(); ++c) connectivity->SetValue(c, mesh.corner_point[c]);
-  for (Index z = 0; z < nzones; ++z) {
+  vtkIdType corners = 0;
+  offsets->SetValue(0, 0);
+  for (Index i = 0; i < nzones; ++i) {
+    const Index z = zones ? (*zones)[i] : i;
     const Index n = mesh.zone_corner_begin[z + 1] - mesh.zone_corner_begin[z];
+    corners += n;
+    offsets->SetValue(i + 1, corners);
     // Zones are counter-clockwise, which is VTK's ordering for 2D cells.
-    types->SetValue(z, n == 4 ? VTK_QUAD : (n == 3 ? VTK_TRIANGLE : VTK_POLYGON));
+    types->SetValue(i, n == 4 ? VTK_QUAD : (n == 3 ? VTK_TRIANGLE : VTK_POLYGON));
+  }
+  connectivity->SetNumberOfValues(corners);
+  vtkIdType k = 0;
+  for (Index i = 0; i < nzones; ++i) {
+    const Index z = zones ? (*zones)[i] : i;
+    for (Index c = mesh.zone_corner_begin[z]; c < mesh.zone_corner_begin[z + 1]; ++c)
+      connectivity->SetValue(k++, local ? (*local)[mesh.corner_point[c]] : mesh.corner_point[c]);
   }
   vtkNew<vtkCellArray> cells;
   cells->SetData(offsets, connectivity);
@@ -221,35 +236,7 @@ vtkNew<vtkUnstructuredGrid> make_piece(const Simulation& part) {
   for (Index p = 0; p < mesh.num_points(); ++p)
     if (local[p] == 0) local[p] = static_cast<Index>(points.size()), points.push_back(p);
 
-  vtkNew<vtkUnstructuredGrid> grid;
-  vtkNew<vtkPoints> xy;
-  xy->SetDataTypeToDouble();
-  xy->SetNumberOfPoints(static_cast<vtkIdType>(points.size()));
-  const auto x = part.x(), y = part.y();
-  for (std::size_t i = 0; i < points.size(); ++i)
-    xy->SetPoint(static_cast<vtkIdType>(i), x[points[i]], y[points[i]], 0);
-  grid->SetPoints(xy);
-  vtkNew<vtkIdTypeArray> offsets, connectivity;
-  vtkNew<vtkUnsignedCharArray> types;
-  offsets->SetNumberOfValues(static_cast<vtkIdType>(zones.size()) + 1);
-  types->SetNumberOfValues(static_cast<vtkIdType>(zones.size()));
-  vtkIdType corners = 0;
-  offsets->SetValue(0, 0);
-  for (std::size_t i = 0; i < zones.size(); ++i) {
-    const Index n = mesh.zone_corner_begin[zones[i] + 1] - mesh.zone_corner_begin[zones[i]];
-    corners += n;
-    offsets->SetValue(static_cast<vtkIdType>(i) + 1, corners);
-    types->SetValue(static_cast<vtkIdType>(i), n == 4 ? VTK_QUAD : (n == 3 ? VTK_TRIANGLE : VTK_POLYGON));
-  }
-  connectivity->SetNumberOfValues(corners);
-  vtkIdType k = 0;
-  for (Index z : zones)
-    for (Index c = mesh.zone_corner_begin[z]; c < mesh.zone_corner_begin[z + 1]; ++c)
-      connectivity->SetValue(k++, local[mesh.corner_point[c]]);
-  vtkNew<vtkCellArray> cells;
-  cells->SetData(offsets, connectivity);
-  grid->SetCells(types, cells);
-
+  auto grid = make_grid(mesh, part.x(), part.y(), &zones, &points, &local);
   add_state(grid, part, &zones, &points);
   const auto global_zone = part.global_zones();
   const auto global_point = part.global_points();

@@ -116,6 +116,46 @@ TEST(Rz, PointMassIsTheRadiusTimesThePlanarMassAndZeroOnTheAxis) {
   EXPECT_EQ(checked, 9);
 }
 
+// A spherically symmetric, non-uniform elastic-plastic compression of a shell (R in [1, 1.5],
+// v = -0.3 / R^2 e_R, the pressurised gas pushing the outer rings out) on an equal-angle mesh
+// of 12 angles x 6 rings, walls on z = 0 and the axis, free surfaces: every ring of points stays on one sphere to
+// round-off. The deviator's in-plane tangential and hoop components stay equal (the hoop strain rate of
+// docs/algorithm.md §19.1), so the hoop body force is radial; with D_thth = (1/V) dV/dt - (1/A) dA/dt the rings spread
+// by about 1e-6 here.
+TEST(Rz, SphericalElasticPlasticShellKeepsEveryRingOnASphere) {
+  constexpr int kAngles = 12, kRings = 6;
+  Problem p = gas_problem(build_mesh(meshgen::annulus_sector(1.0, 1.5, 0, M_PI / 2, kAngles, kRings)), 1.4, 0.2);
+  p.materials[0].strength = Strength{20.0, 1.5, 2.0};
+  RegionSetup r = uniform_region(1.0, 1.0);
+  r.velocity_x = [](double x, double y) { return -0.3 * x / std::pow(x * x + y * y, 1.5); };
+  r.velocity_y = [](double x, double y) { return -0.3 * y / std::pow(x * x + y * y, 1.5); };
+  p.regions.push_back(r);
+  walls(p, {"start", "end"});
+  p.options.geometry = CoordinateSystem::rz;
+  p.options.hourglass = Hourglass::gamma;
+  p.options.hourglass_coefficient = 0.1;
+  Simulation sim(std::move(p));
+  std::vector<int> ring(sim.x().size());
+  for (std::size_t q = 0; q < ring.size(); ++q)
+    ring[q] = static_cast<int>(std::lround((std::hypot(sim.x()[q], sim.y()[q]) - 1.0) * kRings / 0.5));
+  sim.advance_to(0.2);
+  EXPECT_GT(sim.cycle(), 20);
+  EXPECT_LT(std::abs(sim.energy().relative_error), 1e-12);
+  double largest_plastic = 0;
+  for (double eps : sim.plastic_strain()) largest_plastic = std::max(largest_plastic, eps);
+  EXPECT_GT(largest_plastic, 1e-3);
+  std::vector<double> lo(kRings + 1, 1e300), hi(kRings + 1, 0);
+  for (std::size_t q = 0; q < ring.size(); ++q) {
+    const double radius = std::hypot(sim.x()[q], sim.y()[q]);
+    lo[ring[q]] = std::min(lo[ring[q]], radius);
+    hi[ring[q]] = std::max(hi[ring[q]], radius);
+  }
+  for (int i = 0; i <= kRings; ++i) {
+    EXPECT_GT(std::abs(hi[i] - (1.0 + 0.5 * i / kRings)), 1e-3) << "ring " << i << " did not move";
+    EXPECT_LT((hi[i] - lo[i]) / hi[i], 1e-10) << "ring " << i;
+  }
+}
+
 // A spherical blast (Sedov, gamma = 1.4) on an equal-angle quarter disc of 8 angles x 24 rings
 // with centre triangles: total energy to round-off, every ring of zones the same to round-off
 // (spherical symmetry, the zones at the axis included), and the axis points moving as the

@@ -9,13 +9,20 @@
 
 namespace stagger {
 
-// Hoop strain rate D_thth = v_r / r of a zone as the part of the volume rate that the area
-// rate lacks: (1/V) dV/dt - (1/A) dA/dt, so that tr D = (1/V) dV/dt exactly.
+// Hoop strain rate D_thth = v_r / r of a zone: the mean radial velocity of its vertices over
+// their mean radius, sum_k u_k / sum_k x_k (docs/algorithm.md §19.1). For a spherical flow on an
+// equal-angle polar mesh it equals the in-plane tangential rate of the planar gradient, so the
+// deviator keeps S_thth = S_TT and the hoop force stays radial; exact for v_r = a r. The zone
+// is not on the axis (set-up and the tangling check), so sum_k x_k > 0.
 template <int N = 0>
-[[gnu::always_inline]] inline double hoop_strain_rate(const ZoneVertices& v, const double* ux, const double* uy,
-                                                      const double* ax, const double* ay, double area, double volume) {
+[[gnu::always_inline]] inline double hoop_strain_rate(const ZoneVertices& v, const double* ux) {
   const int n = N ? N : v.n;
-  return RzGeometry::volume_divergence<N>(v, ux, uy, volume) - RzGeometry::divergence(n, ux, uy, ax, ay, area);
+  double u = 0, r = 0;
+  for (int k = 0; k < n; ++k) {
+    u += ux[k];
+    r += v.x[k];
+  }
+  return u / r;
 }
 
 // The hoop part of the deviatoric rate over a time h: tr D includes D_thth, so S_rr and S_zz

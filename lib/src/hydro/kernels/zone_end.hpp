@@ -161,9 +161,7 @@ std::int64_t finish_zones(const ZoneEndInput& input, const HydroOptions& o, cons
         const VelocityGradient L = Geometry::velocity_gradient(n, bx, by, ax, ay, area_h);
         Deviator sn = advance_stress(objective, m.mu, {in.sxx[z], in.syy[z], in.sxy[z]},
                                      {in.sxx_half[z], in.syy_half[z], in.sxy_half[z]}, L, dt);
-        if constexpr (Geometry::kRz)
-          add_hoop_stress_rate(m.mu, hoop_strain_rate<N>(vh, bx, by, ax, ay, area_h, Geometry::template volume<N>(vh)),
-                               dt, sn);
+        if constexpr (Geometry::kRz) add_hoop_stress_rate(m.mu, hoop_strain_rate<N>(vh, bx), dt, sn);
         out.plastic_new[z] = in.plastic[z] + radial_return(m.yield, m.hardening, in.plastic[z], m.mu, sn);
         out.sxx_new[z] = sn.xx, out.syy_new[z] = sn.yy, out.sxy_new[z] = sn.xy;
       }

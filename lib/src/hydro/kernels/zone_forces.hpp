@@ -127,11 +127,7 @@ std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, con
         // The hoop strain rate of v^n on x^n, which the stored planar L lacks.
         sh = {in.sxx[z], in.syy[z], in.sxy[z]};
         if (in.dt_half > 0) {
-          const ZoneVertices v0 = gather_vertices<N>(cp, b, n, x, y);
-          double a0x[kMaxZoneVertices], a0y[kMaxZoneVertices];
-          Geometry::template corner_gradients<N>(v0, a0x, a0y);
-          const double hoop = hoop_strain_rate<N>(v0, vnx, vny, a0x, a0y, Geometry::template area<N>(v0),
-                                                  Geometry::template volume<N>(v0));
+          const double hoop = hoop_strain_rate<N>(gather_vertices<N>(cp, b, n, x, y), vnx);
           sh = advance_stress(objective, m.mu, sh, sh, L, in.dt_half);
           add_hoop_stress_rate(m.mu, hoop, in.dt_half, sh);
           radial_return(m.yield, m.hardening, in.plastic[z], m.mu, sh);

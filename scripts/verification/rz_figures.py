@@ -2,7 +2,7 @@
 """Runs the axisymmetric (rz) verification scenes noh_rz and sedov_rz with stagger-profile and plots them.
 
     python3 scripts/verification/rz_figures.py [--build BUILD] [--work DIR] [--rings N|AxN ...]
-                                               [--sedov-rings N ...] [--rerun]
+                                               [--sedov-rings [N ...]] [--rerun]
 
 A Noh mesh is N rings of the scene's 25 angles, or AxN for A angles (the scheme keeps every ring
 symmetric; the angles set the chords' fit to the circle, 10 give the plateau of 25 within 0.5 %).
@@ -40,11 +40,12 @@ def main():
     parser.add_argument("--build", default=os.path.join(ROOT, "build"))
     parser.add_argument("--work", default="/tmp/stagger_rz_figures")
     parser.add_argument("--rings", nargs="+", default=["50"])
-    parser.add_argument("--sedov-rings", type=int, nargs="+", default=[60])
+    parser.add_argument("--sedov-rings", type=int, nargs="*", default=[60])
     parser.add_argument("--rerun", action="store_true")
     args = parser.parse_args()
     noh(args)
-    sedov(args)
+    if args.sedov_rings:  # none: keep the Sedov figure
+        sedov(args)
 
 
 def run_profile(args, scene_name, out, overrides, t):

@@ -207,7 +207,8 @@ class MpiCollective final : public Collective {
   std::vector<int> point_owner;    // global point -> rank
   std::vector<Index> point_local;  // global point -> this rank's local point, -1 when absent
   std::vector<Neighbour> neighbours;
-  std::vector<const StateField*> fields;  // the present state arrays, in table order
+  std::vector<const StateField*> fields;        // the present state arrays, in table order
+  std::vector<const StateField*> remap_fields;  // those an ALE remap changes: the remapped ones, x and y
   std::vector<Index> own_points, own_zones, own_corners;
   // Rank 0: the whole state, and every rank's owned points, zones and corners (global).
   std::unique_ptr<Simulation> whole;
@@ -346,25 +347,39 @@ class MpiCollective final : public Collective {
     halo_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
 
-  const Simulation* gather(const Simulation::Impl& s) override {
+  // Rank 0's whole state gets every rank's owned values of the arrays `list` (of `fields`).
+  void gather_fields(const Simulation::Impl& s, const std::vector<const StateField*>& list) {
     double* out = gather_send.data();
-    for (const StateField* f : fields) {
+    for (const StateField* f : list) {
       const double* values = (s.*(f->member)).data();
-      const auto& list = f->entity == Entity::point ? own_points : f->entity == Entity::zone ? own_zones : own_corners;
-      for (Index i : list) *out++ = values[i];
+      const auto& own = f->entity == Entity::point ? own_points : f->entity == Entity::zone ? own_zones : own_corners;
+      for (Index i : own) *out++ = values[i];
     }
-    MPI_Gatherv(gather_send.data(), static_cast<int>(gather_send.size()), MPI_DOUBLE, gather_recv.data(),
+    if (my_rank == 0) {
+      int total = 0;
+      for (int q = 0; q < size; ++q) {
+        int count = 0;
+        for (const StateField* f : list)
+          count += static_cast<int>(f->entity == Entity::point  ? rank_points[q].size()
+                                    : f->entity == Entity::zone ? rank_zones[q].size()
+                                                                : rank_corners[q].size());
+        gather_counts[q] = count;
+        gather_offsets[q] = total;
+        total += count;
+      }
+    }
+    MPI_Gatherv(gather_send.data(), static_cast<int>(out - gather_send.data()), MPI_DOUBLE, gather_recv.data(),
                 gather_counts.data(), gather_offsets.data(), MPI_DOUBLE, 0, comm);
-    if (my_rank != 0) return nullptr;
+    if (my_rank != 0) return;
     Simulation::Impl& w = DistributedAccess::impl(*whole);
     for (int q = 0; q < size; ++q) {
       const double* in = gather_recv.data() + gather_offsets[q];
-      for (const StateField* f : fields) {
+      for (const StateField* f : list) {
         double* values = (w.*(f->member)).data();
-        const auto& list = f->entity == Entity::point  ? rank_points[q]
-                           : f->entity == Entity::zone ? rank_zones[q]
-                                                       : rank_corners[q];
-        for (Index i : list) values[i] = *in++;
+        const auto& ids = f->entity == Entity::point  ? rank_points[q]
+                          : f->entity == Entity::zone ? rank_zones[q]
+                                                      : rank_corners[q];
+        for (Index i : ids) values[i] = *in++;
       }
     }
     // The scalars are the same on every rank (dt_zone is already global).
@@ -372,7 +387,11 @@ class MpiCollective final : public Collective {
     w.cycle = s.cycle, w.have_previous_forces = s.have_previous_forces;
     w.energy_initial = s.energy_initial, w.boundary_work = s.boundary_work, w.source_work = s.source_work;
     w.dt_reason = s.dt_reason, w.dt_zone = s.dt_zone, w.ale_fixup = s.ale_fixup;
-    return whole.get();
+  }
+
+  const Simulation* gather(const Simulation::Impl& s) override {
+    gather_fields(s, fields);
+    return my_rank == 0 ? whole.get() : nullptr;
   }
 
   // The ALE phase of a distributed run (docs/parallel.md, "ALE"): the decision from this
@@ -394,7 +413,10 @@ class MpiCollective final : public Collective {
       due = worst < o.quality_trigger;
     }
     if (!due) return false;
-    gather(s);
+    // The ALE phase reads and writes only the remapped arrays and the positions: the other
+    // arrays are the same before and after it, on rank 0 and in every part (ghosts included,
+    // by the exchange after the step).
+    gather_fields(s, remap_fields);
     std::string error;
     double result[3] = {0, 0, 0};  // changed, ale_fixup, have_previous_forces
     if (my_rank == 0) {
@@ -418,12 +440,12 @@ class MpiCollective final : public Collective {
     return true;
   }
 
-  // Rank 0's whole state to every rank's part: every present state array at each of its
+  // Rank 0's whole state to every rank's part: every array the remap changes, at each of its
   // points, zones and corners, owned or ghost (one message per rank).
   void scatter(Simulation::Impl& s) {
     const auto size_of = [&](std::size_t points, std::size_t zones, std::size_t corners) {
       std::size_t n = 0;
-      for (const StateField* f : fields)
+      for (const StateField* f : remap_fields)
         n += f->entity == Entity::point ? points : f->entity == Entity::zone ? zones : corners;
       return n;
     };
@@ -435,7 +457,7 @@ class MpiCollective final : public Collective {
         for (Index z : zones) corners += w.zone_corner_begin[z + 1] - w.zone_corner_begin[z];
         scatter_buffer.resize(size_of(points.size(), zones.size(), corners));
         double* out = scatter_buffer.data();
-        for (const StateField* f : fields) {
+        for (const StateField* f : remap_fields) {
           const double* values = (w.*(f->member)).data();
           switch (f->entity) {
             case Entity::point:
@@ -462,7 +484,7 @@ class MpiCollective final : public Collective {
     }
     // A part's entities are in the serial order, as rank 0 packed them.
     const double* in = scatter_buffer.data();
-    for (const StateField* f : fields) {
+    for (const StateField* f : remap_fields) {
       std::vector<double>& values = s.*(f->member);
       std::copy(in, in + values.size(), values.begin());
       in += values.size();
@@ -823,7 +845,11 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
   MPI_Alltoallv(send_ids.data(), sc.data(), sd.data(), MPI_INT32_T, recv_ids.data(), rc.data(), rd.data(), MPI_INT32_T,
                 c);
   for (const StateField& f : state_fields())
-    if (present(s, f.presence)) collective->fields.push_back(&f);
+    if (present(s, f.presence)) {
+      collective->fields.push_back(&f);
+      if ((f.flags & kRemapped) || f.member == &Simulation::Impl::x || f.member == &Simulation::Impl::y)
+        collective->remap_fields.push_back(&f);
+    }
   std::size_t per_point = 0, per_zone = 0, per_corner = 0;
   for (const StateField* f : collective->fields)
     (f->entity == Entity::point ? per_point : f->entity == Entity::zone ? per_zone : per_corner) += 1;

@@ -3,15 +3,16 @@
 # continues bit for bit, and another number of ranks (or a serial run) is one clear error.
 # Runs SCENE on 2 ranks with a checkpoint every 60 cycles, restarts its last checkpoint into
 # another directory, and compares history.csv, summary.json and the last dump's pieces.
-# usage: restart.sh STAGGER SCENE WORKDIR
+# usage: restart.sh STAGGER SCENE WORKDIR [--set KEY=VALUE]... (after the defaults below)
 set -euo pipefail
 stagger=$1 scene=$2 work=$3
+shift 3
 rm -rf "$work"
 mkdir -p "$work"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_mpi_yield_when_idle=1
 export OMPI_MCA_rmaps_base_oversubscribe=1 OMP_NUM_THREADS=1
 sets=(--set mesh.nx=16 --set mesh.ny=16 --set time.end=0.3 --set output.dump_interval=0.1
-  --set output.checkpoint_every_cycles=60 --set output.checkpoint_every_seconds=0)
+  --set output.checkpoint_every_cycles=60 --set output.checkpoint_every_seconds=0 "$@")
 status=0
 mpirun -np 2 "$stagger" run "$scene" --quiet --out "$work/whole" "${sets[@]}" > "$work/whole.log" 2>&1 ||
   { cat "$work/whole.log"; echo "FAIL: the uninterrupted run failed"; exit 1; }

@@ -18,7 +18,8 @@ namespace stagger {
 /// each rank its part; the other ranks use only the non-mesh parts of theirs. On one rank it
 /// is a serial Simulation.
 /// Throws stagger::Error, the same on every rank, for a set-up error or a problem that a
-/// distributed run cannot take (periodic boundaries, a remap, fewer zones than ranks).
+/// distributed run cannot take (periodic boundaries, fewer zones than ranks). An ALE remap
+/// runs on rank 0 on the gathered state (docs/parallel.md, "ALE").
 /// The communicator is duplicated: the run's messages never mix with the caller's.
 Simulation distribute(Problem problem, MPI_Comm comm);
 

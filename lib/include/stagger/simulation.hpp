@@ -124,6 +124,8 @@ class Simulation {
   /// Collective: every rank passes a text (an error met, a decision; "" for none) and gets the
   /// text of the lowest rank whose text is not empty ("" when none is). Serial: `text`.
   std::string agree(const std::string& text) const;
+  /// Collective: whether `local` is true on any rank (one integer reduction). Serial: `local`.
+  bool any_rank(bool local) const;
   ///@}
 
   /// Installs a remap phase, called after each Lagrangian step (nullptr: none).

@@ -341,8 +341,7 @@ class Driver {
         bool by_time = control_.checkpoint_every_seconds > 0 &&
                        seconds_since(last_checkpoint) >= control_.checkpoint_every_seconds;
         // The ranks' clocks differ: a distributed run checkpoints when one rank's is due.
-        if (control_.checkpoint_every_seconds > 0 && simulation_.ranks() > 1)
-          by_time = !simulation_.agree(by_time ? "due" : "").empty();
+        if (control_.checkpoint_every_seconds > 0 && simulation_.ranks() > 1) by_time = simulation_.any_rank(by_time);
         if (by_cycles || by_time) {
           state_.loop_seconds = loop_seconds_before + seconds_since(loop_start);
           write_checkpoint();

@@ -43,6 +43,8 @@ class Collective {
   // Every rank passes a text; every rank gets the text of the lowest rank whose text is not
   // empty (empty when none is): errors met on some ranks, decisions of some ranks.
   virtual std::string agree(const std::string& text) = 0;
+  // Whether `local` is true on any rank (one integer reduction): a decision of some ranks.
+  virtual bool any(bool local) = 0;
   // Rank 0: the whole state, gathered into a serial Simulation (null on the other ranks).
   virtual const Simulation* gather(const Simulation::Impl& s) = 0;
 };

@@ -184,6 +184,9 @@ std::span<const unsigned char> Simulation::ghost_zones() const {
 std::string Simulation::agree(const std::string& text) const {
   return impl_->collective ? impl_->collective->agree(text) : text;
 }
+bool Simulation::any_rank(bool local) const {
+  return impl_->collective ? impl_->collective->any(local) : local;
+}
 
 void Simulation::set_remap(std::shared_ptr<Remap> remap) {
   impl_->remap = std::move(remap);

@@ -17,19 +17,23 @@
 #include <algorithm>
 #include <chrono>
 #include <climits>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <string>
 #include <type_traits>
 #include <vector>
 
+#include "ale/rezone.hpp"
 #include "hydro/collective.hpp"
 #include "hydro/kernels/zone_status.hpp"
 #include "hydro/simulation_impl.hpp"
 #include "hydro/state_fields.hpp"
 #include "stagger/error.hpp"
 #include "stagger/parallel.hpp"
+#include "stagger/remap.hpp"
 
 namespace stagger {
 
@@ -203,13 +207,18 @@ class MpiCollective final : public Collective {
   std::vector<int> point_owner;    // global point -> rank
   std::vector<Index> point_local;  // global point -> this rank's local point, -1 when absent
   std::vector<Neighbour> neighbours;
-  std::vector<const StateField*> fields;  // the present state arrays, in table order
+  std::vector<const StateField*> fields;        // the present state arrays, in table order
+  std::vector<const StateField*> remap_fields;  // those an ALE remap changes: the remapped ones, x and y
   std::vector<Index> own_points, own_zones, own_corners;
   // Rank 0: the whole state, and every rank's owned points, zones and corners (global).
   std::unique_ptr<Simulation> whole;
   std::vector<std::vector<Index>> rank_points, rank_zones, rank_corners;
   std::vector<int> gather_counts, gather_offsets;
   std::vector<double> gather_send, gather_recv;
+  // The ALE remap (docs/parallel.md, "ALE"): rank 0 keeps every rank's whole part (owned and
+  // ghost points and zones, global) to send it the remapped state.
+  std::vector<std::vector<Index>> part_points, part_zones;
+  std::vector<double> scatter_buffer;
   std::vector<MPI_Request> requests;
   // Halo statistics (docs/parallel.md): exchanges, messages and bytes sent, seconds.
   long exchanges = 0, messages = 0;
@@ -294,6 +303,12 @@ class MpiCollective final : public Collective {
     return result;
   }
 
+  bool any(bool local) override {
+    int mine = local ? 1 : 0, result = 0;
+    MPI_Allreduce(&mine, &result, 1, MPI_INT, MPI_MAX, comm);
+    return result != 0;
+  }
+
   void exchange(Simulation::Impl& s) override {
     const auto start = std::chrono::steady_clock::now();
     requests.clear();
@@ -332,25 +347,39 @@ class MpiCollective final : public Collective {
     halo_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
 
-  const Simulation* gather(const Simulation::Impl& s) override {
+  // Rank 0's whole state gets every rank's owned values of the arrays `list` (of `fields`).
+  void gather_fields(const Simulation::Impl& s, const std::vector<const StateField*>& list) {
     double* out = gather_send.data();
-    for (const StateField* f : fields) {
+    for (const StateField* f : list) {
       const double* values = (s.*(f->member)).data();
-      const auto& list = f->entity == Entity::point ? own_points : f->entity == Entity::zone ? own_zones : own_corners;
-      for (Index i : list) *out++ = values[i];
+      const auto& own = f->entity == Entity::point ? own_points : f->entity == Entity::zone ? own_zones : own_corners;
+      for (Index i : own) *out++ = values[i];
     }
-    MPI_Gatherv(gather_send.data(), static_cast<int>(gather_send.size()), MPI_DOUBLE, gather_recv.data(),
+    if (my_rank == 0) {
+      int total = 0;
+      for (int q = 0; q < size; ++q) {
+        int count = 0;
+        for (const StateField* f : list)
+          count += static_cast<int>(f->entity == Entity::point  ? rank_points[q].size()
+                                    : f->entity == Entity::zone ? rank_zones[q].size()
+                                                                : rank_corners[q].size());
+        gather_counts[q] = count;
+        gather_offsets[q] = total;
+        total += count;
+      }
+    }
+    MPI_Gatherv(gather_send.data(), static_cast<int>(out - gather_send.data()), MPI_DOUBLE, gather_recv.data(),
                 gather_counts.data(), gather_offsets.data(), MPI_DOUBLE, 0, comm);
-    if (my_rank != 0) return nullptr;
+    if (my_rank != 0) return;
     Simulation::Impl& w = DistributedAccess::impl(*whole);
     for (int q = 0; q < size; ++q) {
       const double* in = gather_recv.data() + gather_offsets[q];
-      for (const StateField* f : fields) {
+      for (const StateField* f : list) {
         double* values = (w.*(f->member)).data();
-        const auto& list = f->entity == Entity::point  ? rank_points[q]
-                           : f->entity == Entity::zone ? rank_zones[q]
-                                                       : rank_corners[q];
-        for (Index i : list) values[i] = *in++;
+        const auto& ids = f->entity == Entity::point  ? rank_points[q]
+                          : f->entity == Entity::zone ? rank_zones[q]
+                                                      : rank_corners[q];
+        for (Index i : ids) values[i] = *in++;
       }
     }
     // The scalars are the same on every rank (dt_zone is already global).
@@ -358,8 +387,120 @@ class MpiCollective final : public Collective {
     w.cycle = s.cycle, w.have_previous_forces = s.have_previous_forces;
     w.energy_initial = s.energy_initial, w.boundary_work = s.boundary_work, w.source_work = s.source_work;
     w.dt_reason = s.dt_reason, w.dt_zone = s.dt_zone, w.ale_fixup = s.ale_fixup;
-    return whole.get();
   }
+
+  const Simulation* gather(const Simulation::Impl& s) override {
+    gather_fields(s, fields);
+    return my_rank == 0 ? whole.get() : nullptr;
+  }
+
+  // The ALE phase of a distributed run (docs/parallel.md, "ALE"): the decision from this
+  // rank's zones and a global minimum; the rezone and remap by the serial code on rank 0's
+  // gathered state; every rank's part (ghosts included) then gets the remapped state.
+  bool remap(Simulation::Impl& s) {
+    const AleOptions& o = s.problem.ale;
+    // AleRemap's rule (lib/src/ale/ale_remap.cpp): the cycle number, else the worst zone
+    // shape; a minimum is exact, so the decision is the serial one on any number of ranks.
+    bool due = o.mode == AleMode::eulerian || (o.remap_every > 0 && s.cycle % o.remap_every == 0);
+    if (!due && o.quality_trigger > 0) {
+      const Mesh& m = s.mesh();
+      double worst = std::numeric_limits<double>::infinity();
+      for (Index z : own_zones) {
+        const double q = zone_quality(m, z, QualityMeasure::reference_shape, s.x, s.y, m.x, m.y);
+        if (q < worst) worst = q;
+      }
+      MPI_Allreduce(MPI_IN_PLACE, &worst, 1, MPI_DOUBLE, MPI_MIN, comm);
+      due = worst < o.quality_trigger;
+    }
+    if (!due) return false;
+    // The ALE phase reads and writes only the remapped arrays and the positions: the other
+    // arrays are the same before and after it, on rank 0 and in every part (ghosts included,
+    // by the exchange after the step).
+    gather_fields(s, remap_fields);
+    std::string error;
+    double result[3] = {0, 0, 0};  // changed, ale_fixup, have_previous_forces
+    if (my_rank == 0) {
+      Simulation::Impl& w = DistributedAccess::impl(*whole);
+      try {
+        RemapState state{w.mesh(), w.t,   w.cycle, w.x,   w.y,         w.vx,         w.vy,
+                         w.e,      w.sxx, w.syy,   w.sxy, w.zone_mass, w.point_mass, w.area};
+        result[0] = w.remap->remap(state) ? 1 : 0;
+      } catch (const Error& e) {
+        error = e.what();
+      }
+      result[1] = w.ale_fixup;
+      result[2] = w.have_previous_forces ? 1 : 0;
+    }
+    if (error = agree(error); !error.empty()) throw Error(error);
+    MPI_Bcast(result, 3, MPI_DOUBLE, 0, comm);
+    if (result[0] == 0) return false;
+    scatter(s);
+    s.ale_fixup = result[1];
+    s.have_previous_forces = result[2] != 0;
+    return true;
+  }
+
+  // Rank 0's whole state to every rank's part: every array the remap changes, at each of its
+  // points, zones and corners, owned or ghost (one message per rank).
+  void scatter(Simulation::Impl& s) {
+    const auto size_of = [&](std::size_t points, std::size_t zones, std::size_t corners) {
+      std::size_t n = 0;
+      for (const StateField* f : remap_fields)
+        n += f->entity == Entity::point ? points : f->entity == Entity::zone ? zones : corners;
+      return n;
+    };
+    if (my_rank == 0) {
+      const Simulation::Impl& w = DistributedAccess::impl(*whole);
+      for (int q = size - 1; q >= 0; --q) {
+        const std::vector<Index>&zones = part_zones[q], &points = part_points[q];
+        std::size_t corners = 0;
+        for (Index z : zones) corners += w.zone_corner_begin[z + 1] - w.zone_corner_begin[z];
+        scatter_buffer.resize(size_of(points.size(), zones.size(), corners));
+        double* out = scatter_buffer.data();
+        for (const StateField* f : remap_fields) {
+          const double* values = (w.*(f->member)).data();
+          switch (f->entity) {
+            case Entity::point:
+              for (Index p : points) *out++ = values[p];
+              break;
+            case Entity::zone:
+              for (Index z : zones) *out++ = values[z];
+              break;
+            case Entity::corner:
+              for (Index z : zones)
+                for (Index k = w.zone_corner_begin[z]; k < w.zone_corner_begin[z + 1]; ++k) *out++ = values[k];
+              break;
+          }
+        }
+        if (q == 0) break;
+        MPI_Send(scatter_buffer.data(), static_cast<int>(scatter_buffer.size()), MPI_DOUBLE, q, kHaloTag, comm);
+        ++messages;
+        bytes += static_cast<double>(scatter_buffer.size() * sizeof(double));
+      }
+    } else {
+      scatter_buffer.resize(size_of(s.x.size(), s.zone_mass.size(), s.corner_fx.size()));
+      MPI_Recv(scatter_buffer.data(), static_cast<int>(scatter_buffer.size()), MPI_DOUBLE, 0, kHaloTag, comm,
+               MPI_STATUS_IGNORE);
+    }
+    // A part's entities are in the serial order, as rank 0 packed them.
+    const double* in = scatter_buffer.data();
+    for (const StateField* f : remap_fields) {
+      std::vector<double>& values = s.*(f->member);
+      std::copy(in, in + values.size(), values.begin());
+      in += values.size();
+    }
+  }
+};
+
+// The remap hook of a distributed part (MpiCollective::remap).
+class DistributedRemap final : public Remap {
+ public:
+  DistributedRemap(Simulation::Impl& s, MpiCollective& c) : s_(s), c_(c) {}
+  bool remap(RemapState&) override { return c_.remap(s_); }
+
+ private:
+  Simulation::Impl& s_;
+  MpiCollective& c_;
 };
 
 // A part on the wire (rank 0 to its rank): plain bytes, sizes before arrays.
@@ -520,8 +661,6 @@ void on_every_rank(MPI_Comm comm, const std::function<void()>& work) {
 Simulation distribute(Problem problem, MPI_Comm comm) {
   const int size = comm_size(comm), rank = comm_rank(comm);
   if (size == 1) return Simulation(std::move(problem));
-  if (problem.ale.mode != AleMode::lagrangian)
-    throw Error("ale.mode: a distributed run is Lagrangian only yet (docs/parallel.md); run an ALE scene on one rank");
   for (const auto& bc : problem.boundaries)
     if (bc.kind == BoundaryKind::periodic)
       throw Error("periodic boundary '" + bc.tag + "': a distributed run cannot take periodic boundaries yet " +
@@ -584,8 +723,14 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
     for (int q = size - 1; q >= 0; --q) {
       // Two layers: the corner forces of the zones around this rank's points and their
       // predicted velocities; a third for the edge viscosity's neighbours (docs/parallel.md).
-      const Part part = make_part(g->mesh(), owner, q, g->edge_viscosity ? 3 : 2);
+      Part part = make_part(g->mesh(), owner, q, g->edge_viscosity ? 3 : 2);
       packed = pack_part(*g, part);
+      if (g->remap) {
+        collective->part_points.resize(size);
+        collective->part_zones.resize(size);
+        collective->part_points[q] = std::move(part.points);
+        collective->part_zones[q] = std::move(part.zones);
+      }
       if (q == 0) break;
       if (packed.size() > static_cast<std::size_t>(INT_MAX))
         throw Error("the part of rank " + std::to_string(q) + " is too large for one MPI message (" +
@@ -700,7 +845,11 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
   MPI_Alltoallv(send_ids.data(), sc.data(), sd.data(), MPI_INT32_T, recv_ids.data(), rc.data(), rd.data(), MPI_INT32_T,
                 c);
   for (const StateField& f : state_fields())
-    if (present(s, f.presence)) collective->fields.push_back(&f);
+    if (present(s, f.presence)) {
+      collective->fields.push_back(&f);
+      if ((f.flags & kRemapped) || f.member == &Simulation::Impl::x || f.member == &Simulation::Impl::y)
+        collective->remap_fields.push_back(&f);
+    }
   std::size_t per_point = 0, per_zone = 0, per_corner = 0;
   for (const StateField* f : collective->fields)
     (f->entity == Entity::point ? per_point : f->entity == Entity::zone ? per_zone : per_corner) += 1;
@@ -755,6 +904,9 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
     collective->whole = std::move(whole);
   }
   whole.reset();
+  // ALE: the part's own remap (built by its set-up on the part's mesh) gives way to the
+  // distributed one, which runs the whole problem's on rank 0.
+  if (s.remap) s.remap = std::make_shared<DistributedRemap>(s, *collective);
   s.collective = std::move(collective);
   return std::move(*local);
 }

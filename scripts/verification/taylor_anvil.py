@@ -8,7 +8,9 @@ Runs `stagger run apps/scenes/taylor_anvil.toml --set mesh.refine=R` (10 x 100 z
 reads summary.json (status, time, cycles, audit and the `taylor_bar` diagnostics: the final
 length and the impact-face width, which is the face's radius since the axis is x = 0) and the
 last .vtu (the reader of taylor_bar.py), where it counts the crossing zones and the points
-below the wall, and prints the markdown table of
+below the wall, measures the rod's radius 1 and 2 mm above the wall (on the side surface) and
+the height and plastic strain of the first zone on the wall at the axis, and prints the
+markdown table of
 docs/solids.md §9. With --figure it draws the final profiles of every resolution and the
 finest one's equivalent plastic strain (matplotlib, Agg).
 """
@@ -53,6 +55,17 @@ def outline(out, arrays):
     return side[np.argsort(side[:, 1])]
 
 
+def first_row_at_axis(arrays):
+    """Height (mm) and equivalent plastic strain of the zone on the wall at the axis: the zone
+    whose vertices include the point nearest to (0, 0)."""
+    pts = arrays["Points"][:, :2] * 1e3
+    corner = int(np.argmin(pts[:, 0] ** 2 + pts[:, 1] ** 2))
+    for z, ids in enumerate(polygons(arrays)):
+        if corner in ids:
+            return float(np.max(pts[ids, 1]) - np.min(pts[ids, 1])), float(arrays["plastic_strain"][z])
+    return float("nan"), float("nan")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build", default=os.path.join(ROOT, "build"))
@@ -62,8 +75,9 @@ def main():
     parser.add_argument("--figure")
     args = parser.parse_args()
     print("| mesh (r x z) | t reached (us) | status | cycles | final length (mm) | L / L0 | impact-face radius (mm) "
-          "| R / R0 | max eps_p | crossing zones | points below the wall | audit |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+          "| R / R0 | radius at z = 1 / 2 mm (mm) | first row at the axis: height / initial, eps_p | max eps_p "
+          "| crossing zones | points below the wall | audit |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     runs = []
     for refine in args.refine:
         out, s = run(args.build, args.work, refine, args.rerun)
@@ -71,10 +85,14 @@ def main():
         d = s["diagnostics"]
         below = int(np.sum(arrays["Points"][:, 1] < -1e-12))
         nr, nz = int(round(10 * refine)), int(round(100 * refine))
-        print("| %d x %d | %.1f | %s | %d | %.3f | %.4f | %.3f | %.3f | %.2f | %d | %d | %.1e |" % (
+        side = outline(out, arrays)
+        r1, r2 = np.interp([1.0, 2.0], side[:, 1], side[:, 0])
+        height, eps_axis = first_row_at_axis(arrays)
+        print("| %d x %d | %.1f | %s | %d | %.3f | %.4f | %.3f | %.3f | %.3f / %.3f | %.3f, %.2f | %.2f | %d | %d | %.1e |" % (
             nr, nz, s["time"] * 1e6, s["status"][:60], s["cycles"], d["final_length"] * 1e3,
-            d["final_length"] * 1e3 / L0, d["impact_face_width"] * 1e3, d["impact_face_width"] * 1e3 / R0,
-            d["max_plastic_strain"], crossing_zones(arrays), below, s["energy"]["relative_error"]))
+            d["final_length"] * 1e3 / L0, d["impact_face_width"] * 1e3, d["impact_face_width"] * 1e3 / R0, r1, r2,
+            height / (L0 / nz), eps_axis, d["max_plastic_strain"], crossing_zones(arrays), below,
+            s["energy"]["relative_error"]))
         runs.append(("%d x %d" % (nr, nz), out, arrays, s))
     if args.figure:
         import matplotlib

@@ -38,11 +38,14 @@ struct RegionSetup {
   SpaceFunction stress_xx, stress_yy, stress_xy;
 };
 
-/// Internal energy `energy` (total, not specific) deposited at t = 0, shared by mass
-/// among the zones that have the point nearest to (x, y) as a vertex (Sedov).
+/// Internal energy `energy` (total, not specific) deposited at t = 0 (Sedov): with radius 0,
+/// shared by mass among the zones that have the point nearest to (x, y) as a vertex; with
+/// radius R > 0, a Gaussian in specific energy, zone z getting a share proportional to
+/// m_z exp(-(d_z / R)^2), d_z the distance of its vertex average from (x, y).
 struct EnergyDeposit {
-  double x = 0, y = 0;  ///< where (the nearest mesh point is used)
+  double x = 0, y = 0;  ///< where (radius 0: the nearest mesh point is used)
   double energy = 0;    ///< total internal energy added (per unit length in z)
+  double radius = 0;    ///< Gaussian radius R (0: the zones around the nearest point)
 };
 
 /// What a boundary condition imposes on the points of its tag.

@@ -371,11 +371,13 @@ const OptionTable<EnergyDeposit>& deposit_option_table() {
       "deposit",
       "EnergyDeposit",
       {
-          required_number<&D::x>("x", kAnyValue, "length", "x of the point; the nearest mesh point is used"),
+          required_number<&D::x>("x", kAnyValue, "length", "x of the point (radius 0: the nearest mesh point is used)"),
           required_number<&D::y>("y", kAnyValue, "length", "y of the point"),
           required_number<&D::energy>("energy", above(0), "energy per unit length in z",
-                                      "internal energy put at t = 0 into the zones around that mesh point, shared "
-                                      "by mass"),
+                                      "internal energy put into the zones at t = 0 (where: see radius)"),
+          number<&D::radius>("radius", at_least(0), "length",
+                             "0: the zones around the nearest mesh point; > 0: a Gaussian of that radius in specific "
+                             "energy, exp(-(d/radius)^2) at a zone centre's distance d from (x, y)"),
       }};
   return table;
 }

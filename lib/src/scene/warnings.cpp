@@ -136,6 +136,18 @@ double driver_speed(const Problem& problem, const std::vector<ZoneState>& states
   for (const auto& material : problem.materials)
     if (material.burn) speed = std::max(speed, material.burn->detonation_speed);
   for (const auto& deposit : problem.deposits) {
+    if (deposit.radius > 0) {
+      // A Gaussian: the largest specific energy, at the zone nearest to its centre.
+      double total = 0, peak = 0;
+      for (Index z = 0; z < mesh.num_zones(); ++z) {
+        const auto [cx, cy] = zone_centre(mesh, z);
+        const double r = std::hypot(cx - deposit.x, cy - deposit.y) / deposit.radius;
+        total += states[z].rho * zone_area(mesh, z) * std::exp(-r * r);
+        peak = std::max(peak, std::exp(-r * r));
+      }
+      if (total > 0) speed = std::max(speed, std::sqrt(2 * deposit.energy * peak / total));
+      continue;
+    }
     Index nearest = 0;
     double best = std::numeric_limits<double>::infinity();
     for (Index p = 0; p < mesh.num_points(); ++p) {

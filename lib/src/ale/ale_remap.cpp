@@ -37,6 +37,7 @@ class AleRemap final : public Remap {
   void new_positions();
   void remap_once(const double* xo, const double* yo, const double* xn, const double* yn);
   void fixup();
+  void axis_masses();
 
   Simulation::Impl& s_;
   std::vector<int> zone_material_;
@@ -59,7 +60,7 @@ std::vector<int> zone_materials(const Simulation::Impl& s) {
 }
 
 AleRemap::AleRemap(Simulation::Impl& s)
-    : s_(s), zone_material_(zone_materials(s)), remapper_(s.mesh(), zone_material_) {
+    : s_(s), zone_material_(zone_materials(s)), remapper_(s.mesh(), zone_material_, s.rz) {
   const Mesh& m = s.mesh();
   const Index np = m.num_points(), nz = m.num_zones();
   // Every field the state table marks remapped is carried: the masses and velocities by
@@ -124,6 +125,9 @@ void AleRemap::new_positions() {
   const Index np = m.num_points();
   if (s_.problem.ale.mode == AleMode::ale) {
     rezone(m, constraints_, rezone_options_, s_.x, s_.y, m.x, m.y, xn_, yn_, workspace_);
+    // rz: the axis points slide along the axis (exactly on it: the projection onto the
+    // boundary segment may leave round-off).
+    for (Index p : s_.axis_points) xn_[p] = 0;
     return;
   }
   // Eulerian: back to the initial mesh where the point may leave the material.
@@ -250,6 +254,29 @@ void AleRemap::fixup() {
   s_.ale_fixup += moved;
 }
 
+// rz: the planar masses of the axis points' corners, k_c = rho_z A_c s_c (docs/algorithm.md
+// §19), as the set-up computes them, on the new mesh with the remapped densities: they only
+// steer the massless axis points (no energy), and the Lagrangian stretch s_c^0 / s_c they
+// assume starts again from the remapped mesh (docs/ale.md, "ALE in rz").
+void AleRemap::axis_masses() {
+  const Mesh& m = s_.mesh();
+  for (std::size_t i = 0; i < s_.axis_points.size(); ++i) {
+    for (Index j = s_.axis_corner_begin[i]; j < s_.axis_corner_begin[i + 1]; ++j) {
+      const Index c = s_.axis_corner[j], z = m.corner_zone[c], b = m.zone_corner_begin[z];
+      ZoneVertices v;
+      v.n = static_cast<int>(m.zone_corner_begin[z + 1] - b);
+      for (int k = 0; k < v.n; ++k) {
+        v.x[k] = s_.x[m.corner_point[b + k]];
+        v.y[k] = s_.y[m.corner_point[b + k]];
+      }
+      double ca[kMaxZoneVertices];
+      PlanarGeometry::corner_areas(v, ca);
+      const double rho = s_.zone_mass[z] / RzGeometry::volume(v);
+      s_.axis_moment[j] = rho * ca[c - b] * (s_.x[s_.axis_ref_a[j]] + s_.x[s_.axis_ref_b[j]]);
+    }
+  }
+}
+
 bool AleRemap::remap(RemapState&) {
   if (!due()) return false;
   const Mesh& m = s_.mesh();
@@ -305,6 +332,7 @@ bool AleRemap::remap(RemapState&) {
   // densities that belong to the old mesh, whose pressure perturbations c^2 (rho_k - rho_z)
   // are large for a stiff material and push the next steps' corner forces (docs/algorithm.md
   // §18): the rezoned mesh has no hourglass distortion to resist.
+  if (s_.rz) axis_masses();
   if (!s_.corner_mass.empty()) {
     const Subzones shape =
         s_.problem.options.hourglass == Hourglass::subzonal ? Subzones::corners : Subzones::triangles;
@@ -319,7 +347,8 @@ bool AleRemap::remap(RemapState&) {
       double cx, cy, t[kMaxZoneVertices], area = 0;
       subzonal_side_triangles(v, cx, cy, t);
       for (int k = 0; k < v.n; ++k) area += t[k];
-      subzonal_masses(v, s_.zone_mass[z] / area, shape, s_.corner_mass.data() + b);
+      // rz: the planar subzone masses of the true density M / V (docs/algorithm.md §18, §19).
+      subzonal_masses(v, s_.zone_mass[z] / (s_.rz ? RzGeometry::volume(v) : area), shape, s_.corner_mass.data() + b);
     }
   }
   // The lagged corner forces belong to the old mesh: the next predictor evaluates afresh.

@@ -37,7 +37,6 @@ class AleRemap final : public Remap {
   void new_positions();
   void remap_once(const double* xo, const double* yo, const double* xn, const double* yn);
   void fixup();
-  void axis_masses();
 
   Simulation::Impl& s_;
   std::vector<int> zone_material_;
@@ -104,6 +103,7 @@ AleRemap::AleRemap(Simulation::Impl& s)
     rezone_options_.corner_angle_degrees = o.corner_angle;
     rezone_options_.max_move = o.max_move;
   }
+  if (s.rz) ale_axis_masses(s);
   for (auto* v : {&xn_, &yn_, &xa_, &ya_, &xb_, &yb_, &kinetic_, &dk_}) v->assign(np, 0.0);
   stamp_.assign(np, -1);
   dE_.assign(nz, 0.0);
@@ -254,29 +254,6 @@ void AleRemap::fixup() {
   s_.ale_fixup += moved;
 }
 
-// rz: the planar masses of the axis points' corners, k_c = rho_z A_c s_c (docs/algorithm.md
-// §19), as the set-up computes them, on the new mesh with the remapped densities: they only
-// steer the massless axis points (no energy), and the Lagrangian stretch s_c^0 / s_c they
-// assume starts again from the remapped mesh (docs/ale.md, "ALE in rz").
-void AleRemap::axis_masses() {
-  const Mesh& m = s_.mesh();
-  for (std::size_t i = 0; i < s_.axis_points.size(); ++i) {
-    for (Index j = s_.axis_corner_begin[i]; j < s_.axis_corner_begin[i + 1]; ++j) {
-      const Index c = s_.axis_corner[j], z = m.corner_zone[c], b = m.zone_corner_begin[z];
-      ZoneVertices v;
-      v.n = static_cast<int>(m.zone_corner_begin[z + 1] - b);
-      for (int k = 0; k < v.n; ++k) {
-        v.x[k] = s_.x[m.corner_point[b + k]];
-        v.y[k] = s_.y[m.corner_point[b + k]];
-      }
-      double ca[kMaxZoneVertices];
-      PlanarGeometry::corner_areas(v, ca);
-      const double rho = s_.zone_mass[z] / RzGeometry::volume(v);
-      s_.axis_moment[j] = rho * ca[c - b] * (s_.x[s_.axis_ref_a[j]] + s_.x[s_.axis_ref_b[j]]);
-    }
-  }
-}
-
 bool AleRemap::remap(RemapState&) {
   if (!due()) return false;
   const Mesh& m = s_.mesh();
@@ -332,7 +309,7 @@ bool AleRemap::remap(RemapState&) {
   // densities that belong to the old mesh, whose pressure perturbations c^2 (rho_k - rho_z)
   // are large for a stiff material and push the next steps' corner forces (docs/algorithm.md
   // §18): the rezoned mesh has no hourglass distortion to resist.
-  if (s_.rz) axis_masses();
+  if (s_.rz) ale_axis_masses(s_);
   if (!s_.corner_mass.empty()) {
     const Subzones shape =
         s_.problem.options.hourglass == Hourglass::subzonal ? Subzones::corners : Subzones::triangles;
@@ -359,6 +336,30 @@ bool AleRemap::remap(RemapState&) {
 }
 
 }  // namespace
+
+// The planar mass of an axis corner is rho_c A_c = k_c A_c / V_c with its rz subcell mass k_c
+// (carried by the remap, constant between remaps); A_c s_c / V_c is a shape factor (4 for a
+// rectangle on the axis), taken from the initial mesh so that the result depends on the
+// state table alone (a restart gives the same bits).
+void ale_axis_masses(Simulation::Impl& s) {
+  const Mesh& m = s.mesh();
+  for (std::size_t i = 0; i < s.axis_points.size(); ++i) {
+    for (Index j = s.axis_corner_begin[i]; j < s.axis_corner_begin[i + 1]; ++j) {
+      const Index c = s.axis_corner[j], z = m.corner_zone[c], b = m.zone_corner_begin[z];
+      ZoneVertices v;
+      v.n = static_cast<int>(m.zone_corner_begin[z + 1] - b);
+      for (int k = 0; k < v.n; ++k) {
+        v.x[k] = m.x[m.corner_point[b + k]];
+        v.y[k] = m.y[m.corner_point[b + k]];
+      }
+      double area[kMaxZoneVertices], volume[kMaxZoneVertices];
+      PlanarGeometry::corner_areas(v, area);
+      RzGeometry::corner_volumes(v, volume);
+      const double shape = area[c - b] * (m.x[s.axis_ref_a[j]] + m.x[s.axis_ref_b[j]]) / volume[c - b];
+      s.axis_moment[j] = s.ale_corner_mass[c] * shape;
+    }
+  }
+}
 
 std::shared_ptr<Remap> make_ale_remap(Simulation::Impl& s) {
   return std::make_shared<AleRemap>(s);

@@ -38,8 +38,9 @@ struct Swept {
 
 // rz: the same with the measure r dA (x = r): area -> V = int x dA, mx -> int (x - ox) x dA,
 // my -> int (y - oy) x dA, from the second moments of the signed quadrilateral.
+template <bool Rz = false>
 inline Swept swept_quad(double x0, double y0, double x1, double y1, double x2, double y2, double x3, double y3,
-                        double ox, double oy, bool rz = false) {
+                        double ox, double oy) {
   const double ax[4] = {0.0, x1 - x0, x2 - x0, x3 - x0};
   const double ay[4] = {0.0, y1 - y0, y2 - y0, y3 - y0};
   double a2 = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
@@ -48,14 +49,14 @@ inline Swept swept_quad(double x0, double y0, double x1, double y1, double x2, d
     a2 += cr;
     sx += (ax[i] + ax[i + 1]) * cr;
     sy += (ay[i] + ay[i + 1]) * cr;
-    if (rz) {
+    if constexpr (Rz) {
       sxx += (ax[i] * ax[i] + ax[i] * ax[i + 1] + ax[i + 1] * ax[i + 1]) * cr;
       sxy += (ax[i] * ay[i + 1] + 2 * ax[i] * ay[i] + 2 * ax[i + 1] * ay[i + 1] + ax[i + 1] * ay[i]) * cr;
     }
   }
   Swept s;
   s.area = 0.5 * a2;
-  if (rz) {
+  if constexpr (Rz) {
     // Relative to p0: A, int x', int y', int x'^2, int x'y'; then x = x' + x0, y = y' + y0.
     const double area = s.area, ix = sx / 6.0, iy = sy / 6.0, ixx = sxx / 12.0, ixy = sxy / 24.0;
     const double t012 = ax[1] * ay[2] - ax[2] * ay[1], t023 = ax[2] * ay[3] - ax[3] * ay[2];
@@ -355,6 +356,16 @@ void Remapper::point_gradients(const double* qa, const double* qb, bool limiter,
 
 void Remapper::remap(const double* xo, const double* yo, const double* xn, const double* yn, RemapFields& f,
                      bool limiter) {
+  // rz as a template argument: the planar remap pays nothing for it.
+  if (rz_)
+    remap_impl<true>(xo, yo, xn, yn, f, limiter);
+  else
+    remap_impl<false>(xo, yo, xn, yn, f, limiter);
+}
+
+template <bool Rz>
+void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, const double* yn, RemapFields& f,
+                          bool limiter) {
   const Mesh& m = mesh_;
   const Index nz = m.num_zones(), np = m.num_points(), nc = m.num_corners();
   const std::size_t nf = f.specific.size();
@@ -377,11 +388,11 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
     area_[z] = 0.5 * a2;
     cx_[z] = x0 + sx / (3 * a2);
     cy_[z] = y0 + sy / (3 * a2);
-    if (rz_) {  // the volume and its centroid (int x r dA / V, int y r dA / V)
+    if constexpr (Rz) {  // the volume and its centroid (int x r dA / V, int y r dA / V)
       double v = 0, mx = 0, my = 0;
       for (Index k = 1; k + 1 < n; ++k) {
         const Index p = m.corner_point[b + k], q = m.corner_point[b + k + 1];
-        const Swept t = swept_quad(x0, y0, xo[p], yo[p], xo[q], yo[q], xo[q], yo[q], 0.0, 0.0, true);
+        const Swept t = swept_quad<true>(x0, y0, xo[p], yo[p], xo[q], yo[q], xo[q], yo[q], 0.0, 0.0);
         v += t.area, mx += t.mx, my += t.my;
       }
       area_[z] = v, cx_[z] = mx / v, cy_[z] = my / v;
@@ -396,7 +407,7 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
                   pp = m.corner_point[b + (k + n - 1) % n];
       const double qx[4] = {xo[p], 0.5 * (xo[p] + xo[pn]), gox, 0.5 * (xo[p] + xo[pp])};
       const double qy[4] = {yo[p], 0.5 * (yo[p] + yo[pn]), goy, 0.5 * (yo[p] + yo[pp])};
-      const Swept a = swept_quad(qx[0], qy[0], qx[1], qy[1], qx[2], qy[2], qx[3], qy[3], 0.0, 0.0, rz_);
+      const Swept a = swept_quad<Rz>(qx[0], qy[0], qx[1], qy[1], qx[2], qy[2], qx[3], qy[3], 0.0, 0.0);
       crho_[b + k] = a.area > 0 ? f.corner_mass[b + k] / a.area : rho_[z];
       ccx_[b + k] = a.area > 0 ? a.mx / a.area : gox;
       ccy_[b + k] = a.area > 0 ? a.my / a.area : goy;
@@ -488,7 +499,7 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
           const double ax1 = h == 0 ? xn[pa] : mnx, ay1 = h == 0 ? yn[pa] : mny;
           const double bx0 = h == 0 ? mox : xo[pb], by0 = h == 0 ? moy : yo[pb];
           const double bx1 = h == 0 ? mnx : xn[pb], by1 = h == 0 ? mny : yn[pb];
-          const Swept s0 = swept_quad(ax0, ay0, ax1, ay1, bx1, by1, bx0, by0, 0.0, 0.0, rz_);
+          const Swept s0 = swept_quad<Rz>(ax0, ay0, ax1, ay1, bx1, by1, bx0, by0, 0.0, 0.0);
           if (s0.area == 0 && s0.mx == 0 && s0.my == 0) {
             flux_mass_[slot] = 0, flux_active_[slot] = 0;
             for (std::size_t i = 0; i < nf; ++i) flux_q_[i * nc2 + slot] = 0;
@@ -530,8 +541,8 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
       }
       // Centre segment mid(k, k+1) -> centre: corner c on the left, corner c1 on the right.
       const std::size_t slot = nc2 + c;
-      const Swept s = swept_quad(mox, moy, mnx, mny, gnx, gny, gox, goy, 0.0, 0.0, rz_);
-      if ((s.area == 0 && s.mx == 0 && s.my == 0) || !segment_point_[c]) {
+      const Swept s = swept_quad<Rz>(mox, moy, mnx, mny, gnx, gny, gox, goy, 0.0, 0.0);
+      if ((s.area == 0 && s.mx == 0 && s.my == 0) || (Rz && !segment_point_[c])) {
         flux_mass_[slot] = seg_px_[c] = seg_py_[c] = seg_ke_[c] = 0, flux_active_[slot] = 0;
         continue;
       }
@@ -637,8 +648,8 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
     for (Index k = 0; k < n; ++k) {
       const Index p = m.corner_point[b + k], pn = m.corner_point[b + (k + 1) % n],
                   pp = m.corner_point[b + (k + n - 1) % n];
-      areas[k] = swept_quad(xn[p], yn[p], 0.5 * (xn[p] + xn[pn]), 0.5 * (yn[p] + yn[pn]), gx, gy,
-                            0.5 * (xn[p] + xn[pp]), 0.5 * (yn[p] + yn[pp]), 0.0, 0.0, rz_)
+      areas[k] = swept_quad<Rz>(xn[p], yn[p], 0.5 * (xn[p] + xn[pn]), 0.5 * (yn[p] + yn[pn]), gx, gy,
+                                0.5 * (xn[p] + xn[pp]), 0.5 * (yn[p] + yn[pp]), 0.0, 0.0)
                      .area;
       total += areas[k];
     }
@@ -655,7 +666,7 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
   Index failed_point = std::numeric_limits<Index>::max();
 #pragma omp parallel for schedule(static) reduction(min : failed_point) if (np > kParallelMin)
   for (Index p = 0; p < np; ++p) {
-    if (rz_ && axis_point_[p]) {
+    if (Rz && axis_point_[p]) {
       // Massless: the velocity is the (limited) reconstruction at the point's new position.
       const double dx = xn[p] - xo[p], dy = yn[p] - yo[p];
       f.vx[p] += vgx_[p] * dx + vgy_[p] * dy;

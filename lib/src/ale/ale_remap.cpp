@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "hydro/boundary.hpp"
 #include "hydro/kernels/strength.hpp"
 #include "hydro/kernels/subzonal_pressure.hpp"
+#include "hydro/kernels/zone_status.hpp"
 #include "hydro/state_fields.hpp"
 #include "stagger/error.hpp"
 
@@ -59,7 +61,7 @@ std::vector<int> zone_materials(const Simulation::Impl& s) {
 }
 
 AleRemap::AleRemap(Simulation::Impl& s)
-    : s_(s), zone_material_(zone_materials(s)), remapper_(s.mesh(), zone_material_) {
+    : s_(s), zone_material_(zone_materials(s)), remapper_(s.mesh(), zone_material_, s.rz) {
   const Mesh& m = s.mesh();
   const Index np = m.num_points(), nz = m.num_zones();
   // Every field the state table marks remapped is carried: the masses and velocities by
@@ -103,6 +105,7 @@ AleRemap::AleRemap(Simulation::Impl& s)
     rezone_options_.corner_angle_degrees = o.corner_angle;
     rezone_options_.max_move = o.max_move;
   }
+  if (s.rz) ale_axis_masses(s);
   for (auto* v : {&xn_, &yn_, &xa_, &ya_, &xb_, &yb_, &kinetic_, &dk_}) v->assign(np, 0.0);
   stamp_.assign(np, -1);
   dE_.assign(nz, 0.0);
@@ -115,8 +118,15 @@ bool AleRemap::due() const {
   // uninterrupted run does.
   if (o.remap_every > 0 && s_.cycle % o.remap_every == 0) return true;
   if (o.quality_trigger <= 0) return false;
+  // Only the worst zone matters: a min over the zones, the same in any order (and on any
+  // number of threads), evaluated every cycle.
   const Mesh& m = s_.mesh();
-  return mesh_quality_summary(m, QualityMeasure::reference_shape, s_.x, s_.y, m.x, m.y).worst < o.quality_trigger;
+  const Index nz = m.num_zones();
+  double worst = std::numeric_limits<double>::infinity();
+#pragma omp parallel for schedule(static) reduction(min : worst) if (nz > kParallelMin)
+  for (Index z = 0; z < nz; ++z)
+    worst = std::min(worst, zone_quality(m, z, QualityMeasure::reference_shape, s_.x, s_.y, m.x, m.y));
+  return worst < o.quality_trigger;
 }
 
 void AleRemap::new_positions() {
@@ -124,6 +134,9 @@ void AleRemap::new_positions() {
   const Index np = m.num_points();
   if (s_.problem.ale.mode == AleMode::ale) {
     rezone(m, constraints_, rezone_options_, s_.x, s_.y, m.x, m.y, xn_, yn_, workspace_);
+    // rz: the axis points slide along the axis (exactly on it: the projection onto the
+    // boundary segment may leave round-off).
+    for (Index p : s_.axis_points) xn_[p] = 0;
     return;
   }
   // Eulerian: back to the initial mesh where the point may leave the material.
@@ -305,6 +318,7 @@ bool AleRemap::remap(RemapState&) {
   // densities that belong to the old mesh, whose pressure perturbations c^2 (rho_k - rho_z)
   // are large for a stiff material and push the next steps' corner forces (docs/algorithm.md
   // §18): the rezoned mesh has no hourglass distortion to resist.
+  if (s_.rz) ale_axis_masses(s_);
   if (!s_.corner_mass.empty()) {
     const Subzones shape =
         s_.problem.options.hourglass == Hourglass::subzonal ? Subzones::corners : Subzones::triangles;
@@ -319,7 +333,8 @@ bool AleRemap::remap(RemapState&) {
       double cx, cy, t[kMaxZoneVertices], area = 0;
       subzonal_side_triangles(v, cx, cy, t);
       for (int k = 0; k < v.n; ++k) area += t[k];
-      subzonal_masses(v, s_.zone_mass[z] / area, shape, s_.corner_mass.data() + b);
+      // rz: the planar subzone masses of the true density M / V (docs/algorithm.md §18, §19).
+      subzonal_masses(v, s_.zone_mass[z] / (s_.rz ? RzGeometry::volume(v) : area), shape, s_.corner_mass.data() + b);
     }
   }
   // The lagged corner forces belong to the old mesh: the next predictor evaluates afresh.
@@ -330,6 +345,30 @@ bool AleRemap::remap(RemapState&) {
 }
 
 }  // namespace
+
+// The planar mass of an axis corner is rho_c A_c = k_c A_c / V_c with its rz subcell mass k_c
+// (carried by the remap, constant between remaps); A_c s_c / V_c is a shape factor (4 for a
+// rectangle on the axis), taken from the initial mesh so that the result depends on the
+// state table alone (a restart gives the same bits).
+void ale_axis_masses(Simulation::Impl& s) {
+  const Mesh& m = s.mesh();
+  for (std::size_t i = 0; i < s.axis_points.size(); ++i) {
+    for (Index j = s.axis_corner_begin[i]; j < s.axis_corner_begin[i + 1]; ++j) {
+      const Index c = s.axis_corner[j], z = m.corner_zone[c], b = m.zone_corner_begin[z];
+      ZoneVertices v;
+      v.n = static_cast<int>(m.zone_corner_begin[z + 1] - b);
+      for (int k = 0; k < v.n; ++k) {
+        v.x[k] = m.x[m.corner_point[b + k]];
+        v.y[k] = m.y[m.corner_point[b + k]];
+      }
+      double area[kMaxZoneVertices], volume[kMaxZoneVertices];
+      PlanarGeometry::corner_areas(v, area);
+      RzGeometry::corner_volumes(v, volume);
+      const double shape = area[c - b] * (m.x[s.axis_ref_a[j]] + m.x[s.axis_ref_b[j]]) / volume[c - b];
+      s.axis_moment[j] = s.ale_corner_mass[c] * shape;
+    }
+  }
+}
 
 std::shared_ptr<Remap> make_ale_remap(Simulation::Impl& s) {
   return std::make_shared<AleRemap>(s);

@@ -14,4 +14,9 @@ namespace stagger {
 // kinetic-energy fix-up. Throws stagger::Error for a state field it cannot carry.
 std::shared_ptr<Remap> make_ale_remap(Simulation::Impl& s);
 
+// rz: the planar masses of the massless axis points' corners (docs/algorithm.md §19) from the
+// remapped subcell masses (docs/ale.md, "ALE in rz"); at set-up, after every remap and after
+// a restore.
+void ale_axis_masses(Simulation::Impl& s);
+
 }  // namespace stagger

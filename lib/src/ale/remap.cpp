@@ -36,19 +36,38 @@ struct Swept {
   bool simple = true;               // not a bow-tie (one diagonal splits it into like-signed triangles)
 };
 
+// rz: the same with the measure r dA (x = r): area -> V = int x dA, mx -> int (x - ox) x dA,
+// my -> int (y - oy) x dA, from the second moments of the signed quadrilateral.
+template <bool Rz = false>
 inline Swept swept_quad(double x0, double y0, double x1, double y1, double x2, double y2, double x3, double y3,
                         double ox, double oy) {
   const double ax[4] = {0.0, x1 - x0, x2 - x0, x3 - x0};
   const double ay[4] = {0.0, y1 - y0, y2 - y0, y3 - y0};
-  double a2 = 0, sx = 0, sy = 0;
+  double a2 = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
   for (int i = 1; i < 3; ++i) {  // the terms with the origin vanish
     const double cr = ax[i] * ay[i + 1] - ax[i + 1] * ay[i];
     a2 += cr;
     sx += (ax[i] + ax[i + 1]) * cr;
     sy += (ay[i] + ay[i + 1]) * cr;
+    if constexpr (Rz) {
+      sxx += (ax[i] * ax[i] + ax[i] * ax[i + 1] + ax[i + 1] * ax[i + 1]) * cr;
+      sxy += (ax[i] * ay[i + 1] + 2 * ax[i] * ay[i] + 2 * ax[i + 1] * ay[i + 1] + ax[i + 1] * ay[i]) * cr;
+    }
   }
   Swept s;
   s.area = 0.5 * a2;
+  if constexpr (Rz) {
+    // Relative to p0: A, int x', int y', int x'^2, int x'y'; then x = x' + x0, y = y' + y0.
+    const double area = s.area, ix = sx / 6.0, iy = sy / 6.0, ixx = sxx / 12.0, ixy = sxy / 24.0;
+    const double t012 = ax[1] * ay[2] - ax[2] * ay[1], t023 = ax[2] * ay[3] - ax[3] * ay[2];
+    const double t123 = (ax[2] - ax[1]) * (ay[3] - ay[1]) - (ax[3] - ax[1]) * (ay[2] - ay[1]);
+    const double t130 = (ax[3] - ax[1]) * (0 - ay[1]) - (0 - ax[1]) * (ay[3] - ay[1]);
+    s.simple = t012 * t023 >= 0 || t123 * t130 >= 0;
+    s.area = ix + x0 * area;
+    s.mx = ixx + 2 * x0 * ix + x0 * x0 * area - ox * s.area;
+    s.my = ixy + x0 * iy + y0 * ix + x0 * y0 * area - oy * s.area;
+    return s;
+  }
   // Triangles of the two diagonal splits: (0,1,2) + (0,2,3) and (1,2,3) + (1,3,0).
   const double t012 = ax[1] * ay[2] - ax[2] * ay[1], t023 = ax[2] * ay[3] - ax[3] * ay[2];
   const double t123 = (ax[2] - ax[1]) * (ay[3] - ay[1]) - (ax[3] - ax[1]) * (ay[2] - ay[1]);
@@ -98,8 +117,11 @@ inline double bj_factor(double q, double delta, double qmin, double qmax) {
 
 }  // namespace
 
-Remapper::Remapper(const Mesh& mesh, std::span<const int> zone_material) : mesh_(mesh) {
+Remapper::Remapper(const Mesh& mesh, std::span<const int> zone_material, bool rz) : mesh_(mesh), rz_(rz) {
   const Index nz = mesh.num_zones(), np = mesh.num_points(), nc = mesh.num_corners();
+  axis_point_.assign(np, 0);
+  if (rz)
+    for (Index p = 0; p < np; ++p) axis_point_[p] = mesh.x[p] == 0;
   side_zone_.assign(nc, -1);
   side_corner0_.assign(nc, -1);
   side_corner1_.assign(nc, -1);
@@ -199,6 +221,13 @@ Remapper::Remapper(const Mesh& mesh, std::span<const int> zone_material) : mesh_
   flatten(zl, zone_list_begin_, zone_list_);
   flatten(cl, corner_list_begin_, corner_list_);
   flatten(pl, point_list_begin_, point_list_);
+  // rz: a centre segment with an end on the axis exchanges nothing. The axis points are
+  // massless in the Lagrangian rz step (docs/algorithm.md §19): their dual cells hold mass
+  // (their corners') but no momentum, so mass moved between them and the other points'
+  // dual cells would carry momentum from or into nothing.
+  segment_point_.assign(nc, 1);
+  for (Index c = 0; c < nc; ++c)
+    if (axis_point_[mesh.corner_point[c]] || axis_point_[mesh.corner_point[next_corner(c)]]) segment_point_[c] = 0;
   flux_mass_.assign(3 * static_cast<std::size_t>(nc), 0.0);
   flux_active_.assign(3 * static_cast<std::size_t>(nc), 0);
   for (auto* v : {&seg_px_, &seg_py_, &seg_ke_}) v->assign(nc, 0.0);
@@ -327,6 +356,16 @@ void Remapper::point_gradients(const double* qa, const double* qb, bool limiter,
 
 void Remapper::remap(const double* xo, const double* yo, const double* xn, const double* yn, RemapFields& f,
                      bool limiter) {
+  // rz as a template argument: the planar remap pays nothing for it.
+  if (rz_)
+    remap_impl<true>(xo, yo, xn, yn, f, limiter);
+  else
+    remap_impl<false>(xo, yo, xn, yn, f, limiter);
+}
+
+template <bool Rz>
+void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, const double* yn, RemapFields& f,
+                          bool limiter) {
   const Mesh& m = mesh_;
   const Index nz = m.num_zones(), np = m.num_points(), nc = m.num_corners();
   const std::size_t nf = f.specific.size();
@@ -349,6 +388,15 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
     area_[z] = 0.5 * a2;
     cx_[z] = x0 + sx / (3 * a2);
     cy_[z] = y0 + sy / (3 * a2);
+    if constexpr (Rz) {  // the volume and its centroid (int x r dA / V, int y r dA / V)
+      double v = 0, mx = 0, my = 0;
+      for (Index k = 1; k + 1 < n; ++k) {
+        const Index p = m.corner_point[b + k], q = m.corner_point[b + k + 1];
+        const Swept t = swept_quad<true>(x0, y0, xo[p], yo[p], xo[q], yo[q], xo[q], yo[q], 0.0, 0.0);
+        v += t.area, mx += t.mx, my += t.my;
+      }
+      area_[z] = v, cx_[z] = mx / v, cy_[z] = my / v;
+    }
     rho_[z] = f.zone_mass[z] / area_[z];
     double gox = 0, goy = 0;
     for (Index k = 0; k < n; ++k) gox += xo[m.corner_point[b + k]], goy += yo[m.corner_point[b + k]];
@@ -359,7 +407,7 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
                   pp = m.corner_point[b + (k + n - 1) % n];
       const double qx[4] = {xo[p], 0.5 * (xo[p] + xo[pn]), gox, 0.5 * (xo[p] + xo[pp])};
       const double qy[4] = {yo[p], 0.5 * (yo[p] + yo[pn]), goy, 0.5 * (yo[p] + yo[pp])};
-      const Swept a = swept_quad(qx[0], qy[0], qx[1], qy[1], qx[2], qy[2], qx[3], qy[3], 0.0, 0.0);
+      const Swept a = swept_quad<Rz>(qx[0], qy[0], qx[1], qy[1], qx[2], qy[2], qx[3], qy[3], 0.0, 0.0);
       crho_[b + k] = a.area > 0 ? f.corner_mass[b + k] / a.area : rho_[z];
       ccx_[b + k] = a.area > 0 ? a.mx / a.area : gox;
       ccy_[b + k] = a.area > 0 ? a.my / a.area : goy;
@@ -451,7 +499,7 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
           const double ax1 = h == 0 ? xn[pa] : mnx, ay1 = h == 0 ? yn[pa] : mny;
           const double bx0 = h == 0 ? mox : xo[pb], by0 = h == 0 ? moy : yo[pb];
           const double bx1 = h == 0 ? mnx : xn[pb], by1 = h == 0 ? mny : yn[pb];
-          const Swept s0 = swept_quad(ax0, ay0, ax1, ay1, bx1, by1, bx0, by0, 0.0, 0.0);
+          const Swept s0 = swept_quad<Rz>(ax0, ay0, ax1, ay1, bx1, by1, bx0, by0, 0.0, 0.0);
           if (s0.area == 0 && s0.mx == 0 && s0.my == 0) {
             flux_mass_[slot] = 0, flux_active_[slot] = 0;
             for (std::size_t i = 0; i < nf; ++i) flux_q_[i * nc2 + slot] = 0;
@@ -493,8 +541,8 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
       }
       // Centre segment mid(k, k+1) -> centre: corner c on the left, corner c1 on the right.
       const std::size_t slot = nc2 + c;
-      const Swept s = swept_quad(mox, moy, mnx, mny, gnx, gny, gox, goy, 0.0, 0.0);
-      if (s.area == 0 && s.mx == 0 && s.my == 0) {
+      const Swept s = swept_quad<Rz>(mox, moy, mnx, mny, gnx, gny, gox, goy, 0.0, 0.0);
+      if ((s.area == 0 && s.mx == 0 && s.my == 0) || (Rz && !segment_point_[c])) {
         flux_mass_[slot] = seg_px_[c] = seg_py_[c] = seg_ke_[c] = 0, flux_active_[slot] = 0;
         continue;
       }
@@ -600,8 +648,8 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
     for (Index k = 0; k < n; ++k) {
       const Index p = m.corner_point[b + k], pn = m.corner_point[b + (k + 1) % n],
                   pp = m.corner_point[b + (k + n - 1) % n];
-      areas[k] = swept_quad(xn[p], yn[p], 0.5 * (xn[p] + xn[pn]), 0.5 * (yn[p] + yn[pn]), gx, gy,
-                            0.5 * (xn[p] + xn[pp]), 0.5 * (yn[p] + yn[pp]), 0.0, 0.0)
+      areas[k] = swept_quad<Rz>(xn[p], yn[p], 0.5 * (xn[p] + xn[pn]), 0.5 * (yn[p] + yn[pn]), gx, gy,
+                                0.5 * (xn[p] + xn[pp]), 0.5 * (yn[p] + yn[pp]), 0.0, 0.0)
                      .area;
       total += areas[k];
     }
@@ -618,6 +666,14 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
   Index failed_point = std::numeric_limits<Index>::max();
 #pragma omp parallel for schedule(static) reduction(min : failed_point) if (np > kParallelMin)
   for (Index p = 0; p < np; ++p) {
+    if (Rz && axis_point_[p]) {
+      // Massless: the velocity is the (limited) reconstruction at the point's new position.
+      const double dx = xn[p] - xo[p], dy = yn[p] - yo[p];
+      f.vx[p] += vgx_[p] * dx + vgy_[p] * dy;
+      f.vy[p] += wgx_[p] * dx + wgy_[p] * dy;
+      if (f.point_kinetic) f.point_kinetic[p] = 0;
+      continue;
+    }
     const double m0 = f.point_mass[p], u = f.vx[p], w = f.vy[p];
     double ke = 0.5 * m0 * (u * u + w * w);
     if (point_touched_[p]) {

@@ -33,8 +33,11 @@ struct RemapFields {
 class Remapper {
  public:
   // zone_material[z]: zones of different materials exchange nothing (their shared points
-  // must not move, so their faces sweep no area).
-  Remapper(const Mesh& mesh, std::span<const int> zone_material);
+  // must not move, so their faces sweep no area). rz (docs/ale.md, "ALE in rz"): volumes,
+  // moments and fluxes are per radian (int r dA, x = r); the points on x = 0 are massless and
+  // exchange nothing with their neighbours' dual cells: their velocity is the reconstruction
+  // at their new position.
+  Remapper(const Mesh& mesh, std::span<const int> zone_material, bool rz = false);
 
   // Remaps `fields` from the positions (xo, yo) to (xn, yn). limiter: Barth-Jespersen on every
   // gradient. Throws stagger::Error naming the zone or point if a mass would become
@@ -50,11 +53,16 @@ class Remapper {
   long repaired_zones() const { return repaired_; }
 
  private:
+  template <bool Rz>
+  void remap_impl(const double* xo, const double* yo, const double* xn, const double* yn, RemapFields& f, bool limiter);
   void zone_gradients(const double* q, bool limiter, double* gx, double* gy, double* lo, double* hi);
   void point_gradients(const double* qa, const double* qb, bool limiter, double* gax, double* gay, double* gbx,
                        double* gby);
 
   const Mesh& mesh_;
+  bool rz_ = false;
+  std::vector<char> axis_point_;     // rz: per point, on x = 0
+  std::vector<char> segment_point_;  // per corner: its centre segment moves momentum between points
   std::vector<Index> side_zone_;     // per corner: the zone across the corner's side, -1 if none
   std::vector<Index> side_corner0_;  // per corner: that zone's corner at this corner's point
   std::vector<Index> side_corner1_;  // ... and at the side's other point

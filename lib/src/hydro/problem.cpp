@@ -59,10 +59,6 @@ void Problem::validate() const {
     // Not derived for the area-weighted rz scheme (docs/algorithm.md §19).
     require(!(sources && sources->momentum),
             "problem '" + name + "': numerics.geometry = \"rz\" does not support a momentum source");
-    // The remap fluxes planar areas and masses; the rz point weights (§19) are not remapped yet.
-    require(ale.mode == AleMode::lagrangian, "problem '" + name +
-                                                 "': numerics.geometry = \"rz\" runs Lagrangian only (ale.mode = "
-                                                 "\"lagrangian\"); the remap is planar (docs/ale.md)");
   }
 
   std::set<std::string> material_names;

@@ -260,7 +260,8 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
       const double mc = rho0 * corner_area[k];
       zone_mass[z] += rz ? rho0 * corner_volume[k] : mc;
       point_mass[m.corner_point[c]] += mc;
-      if (!ale_corner_mass.empty()) ale_corner_mass[c] = mc;
+      // The ALE subcell masses: rz ones (per radian) in rz (docs/ale.md, "ALE in rz").
+      if (!ale_corner_mass.empty()) ale_corner_mass[c] = rz ? rho0 * corner_volume[k] : mc;
     }
     if (mat.strength) {
       if (setup.stress_xx) sxx[z] = setup.stress_xx(cx, cy);
@@ -271,6 +272,16 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
     }
   }
   if (rz) setup_rz_masses();
+  // ALE in rz: the point masses are the sums of the rz subcell masses the remap carries
+  // (docs/ale.md, "ALE in rz"); the axis points stay massless.
+  if (rz && !ale_corner_mass.empty())
+    for (Index p = 0; p < np; ++p) {
+      if (m.x[p] == 0) continue;
+      double mass = 0;
+      for (Index k = m.point_corner_begin[p]; k < m.point_corner_begin[p + 1]; ++k)
+        mass += ale_corner_mass[m.point_corners[k]];
+      point_mass[p] = mass;
+    }
   for (Index p = 0; p < np; ++p) {
     if (rz && m.x[p] == 0) continue;
     if (!(point_mass[p] > 0)) {

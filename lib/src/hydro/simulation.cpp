@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "ale/ale_remap.hpp"
 #include "hydro/collective.hpp"
 #include "hydro/exact_sum.hpp"
 #include "hydro/physics_digest.hpp"
@@ -291,6 +292,7 @@ void Simulation::restore(std::string_view blob, const std::string& source) {
   s.boundary_work = boundary_work;
   s.source_work = source_work;
   s.ale_fixup = ale_fixup;
+  if (s.rz && !s.ale_corner_mass.empty()) ale_axis_masses(s);  // from the restored subcell masses
   s.recompute_state();
   s.dt_next = dt_next;
   s.dt_zone = dt_zone;

@@ -172,6 +172,9 @@ void AleRemap::fixup() {
   // kinetic energy they remove is part of the fix-up.
   apply_constraints(s_, s_.vx, s_.vy, s_.t);
   std::fill(dE_.begin(), dE_.end(), 0.0);
+  // The visit tags 2 p and 2 p + 1 repeat from one fix-up to the next: a tag left by the last
+  // call (a point whose neighbours had nothing to give) would skip a neighbour in this one.
+  std::fill(stamp_.begin(), stamp_.end(), -1);
   double moved = 0;
   for (Index p = 0; p < np; ++p) {
     const double u = s_.vx[p], w = s_.vy[p];

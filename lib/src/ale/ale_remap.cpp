@@ -37,6 +37,7 @@ class AleRemap final : public Remap {
  private:
   bool due() const;
   void new_positions();
+  void remap_substeps(int steps);
   void remap_once(const double* xo, const double* yo, const double* xn, const double* yn);
   void fixup();
 
@@ -51,6 +52,11 @@ class AleRemap final : public Remap {
   RemapFields fields_;                // kept so that a remap allocates nothing after the first
   std::vector<double> xn_, yn_, xa_, ya_, xb_, yb_, kinetic_, dk_, dE_;
   std::vector<std::int64_t> stamp_;  // fix-up: points already visited around a point (2 p, 2 p + 1)
+  // The arrays a remap writes (those the state table marks remapped) as they were before it:
+  // a remap whose fix-up cannot be paid puts them back, so that the run's final dump is the
+  // last good state, not the failed remap's (docs/ale.md, "Energy").
+  std::vector<StateArray> written_;
+  std::vector<std::vector<double>> before_;
 };
 
 std::vector<int> zone_materials(const Simulation::Impl& s) {
@@ -68,6 +74,8 @@ AleRemap::AleRemap(Simulation::Impl& s)
   // construction, every other zone field per unit mass.
   for (const StateField& f : state_fields()) {
     if (!(f.flags & kRemapped) || !present(s, f.presence)) continue;
+    written_.push_back(f.member);
+    before_.emplace_back();
     const std::string name = f.name;
     if (name == "vx" || name == "vy" || name == "point_mass" || name == "zone_mass" || name == "ale_corner_mass" ||
         name == "corner_mass")
@@ -143,6 +151,28 @@ void AleRemap::new_positions() {
   for (Index p = 0; p < np; ++p) {
     xn_[p] = lagrangian_[p] ? s_.x[p] : m.x[p];
     yn_[p] = lagrangian_[p] ? s_.y[p] : m.y[p];
+  }
+}
+
+// The remap from the current positions to (xn_, yn_), in `steps` sub-steps along the straight
+// paths from the old to the new positions.
+void AleRemap::remap_substeps(int steps) {
+  if (steps == 1) {
+    remap_once(s_.x.data(), s_.y.data(), xn_.data(), yn_.data());
+    return;
+  }
+  const Index np = s_.mesh().num_points();
+  std::copy(s_.x.begin(), s_.x.end(), xa_.begin());
+  std::copy(s_.y.begin(), s_.y.end(), ya_.begin());
+  for (int j = 1; j <= steps; ++j) {
+    const double f = static_cast<double>(j) / steps;
+    for (Index p = 0; p < np; ++p) {
+      xb_[p] = j == steps ? xn_[p] : s_.x[p] + f * (xn_[p] - s_.x[p]);
+      yb_[p] = j == steps ? yn_[p] : s_.y[p] + f * (yn_[p] - s_.y[p]);
+    }
+    remap_once(xa_.data(), ya_.data(), xb_.data(), yb_.data());
+    std::swap(xa_, xb_);
+    std::swap(ya_, yb_);
   }
 }
 
@@ -281,22 +311,20 @@ bool AleRemap::remap(RemapState&) {
         << kMaxSubsteps * kSubstepFraction << " of their shortest edge in one remap (docs/ale.md)";
     throw Error(msg.str());
   }
-  if (steps == 1) {
-    remap_once(s_.x.data(), s_.y.data(), xn_.data(), yn_.data());
-  } else {
-    // Sub-steps along the straight paths from the old to the new positions.
-    std::copy(s_.x.begin(), s_.x.end(), xa_.begin());
-    std::copy(s_.y.begin(), s_.y.end(), ya_.begin());
-    for (int j = 1; j <= steps; ++j) {
-      const double f = static_cast<double>(j) / steps;
-      for (Index p = 0; p < np; ++p) {
-        xb_[p] = j == steps ? xn_[p] : s_.x[p] + f * (xn_[p] - s_.x[p]);
-        yb_[p] = j == steps ? yn_[p] : s_.y[p] + f * (yn_[p] - s_.y[p]);
-      }
-      remap_once(xa_.data(), ya_.data(), xb_.data(), yb_.data());
-      std::swap(xa_, xb_);
-      std::swap(ya_, yb_);
+  for (std::size_t k = 0; k < written_.size(); ++k) {
+    const std::vector<double>& now = s_.*written_[k];
+    before_[k].assign(now.begin(), now.end());  // allocates at the first remap only
+  }
+  const double fixup_before = s_.ale_fixup;
+  try {
+    remap_substeps(steps);
+  } catch (const Error&) {
+    for (std::size_t k = 0; k < written_.size(); ++k) {
+      std::vector<double>& now = s_.*written_[k];
+      std::copy(before_[k].begin(), before_[k].end(), now.begin());
     }
+    s_.ale_fixup = fixup_before;
+    throw;
   }
   std::copy(xn_.begin(), xn_.end(), s_.x.begin());
   std::copy(yn_.begin(), yn_.end(), s_.y.begin());

@@ -3,7 +3,7 @@
 // collective operations the step asks for (lib/src/hydro/collective.hpp).
 //
 // Why the bits are the serial ones (docs/parallel.md, "Determinism"):
-//  - every rank sets up the whole problem as the serial run does, and copies its part of
+//  - rank 0 sets up the whole problem as the serial run does and sends each rank its part of
 //    that state, so the initial state is the serial one bit for bit;
 //  - a rank's zones, points and corners keep the serial (global) order, so each point sums
 //    its corner forces in the serial order;
@@ -578,12 +578,11 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
   MPI_Comm c = collective->comm;
   collective->my_rank = rank;
   collective->size = size;
-  // Rank 0 sets up the whole problem as the serial run does (its errors reach every rank),
-  // partitions it and sends every other rank its part; the other ranks drop their copy of
-  // the mesh first, so they never hold more than the scene's mesh and their part.
-  // METIS partitions the scene's mesh (the set-up keeps its connectivity) before the set-up,
-  // so that its work space is handed back before the whole state is built (docs/parallel.md,
-  // "Memory").
+  // Rank 0 partitions the scene's mesh, sets up the whole problem as the serial run does (its
+  // errors reach every rank) and sends every other rank its part; the other ranks drop their
+  // copy of the mesh first, so they never hold more than the scene's mesh and their part.
+  // METIS runs before the set-up (which keeps the mesh's connectivity), so that its work
+  // space is handed back before the whole state is built (docs/parallel.md, "Memory").
   std::vector<int>& owner = collective->zone_owner;
   on_every_rank(c, [&] {
     if (rank == 0) owner = partition_zones(problem.mesh, size);

@@ -734,10 +734,12 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
       if (!present(s, f.presence)) continue;
       std::vector<double>& to = s.*f.member;
       const std::size_t expected = to.size();
-      if (gathered(f))
+      if (gathered(f)) {
         part_values(*g, f, part_zones[0], part_points[0], to);
-      else
-        to.swap(own.at(k++));
+      } else {
+        to.swap(own.at(k));
+        std::vector<double>().swap(own[k++]);  // freed now: the maps below reuse it
+      }
       check(f, to.size(), expected);
     }
   }

@@ -5,6 +5,10 @@
 // `stagger run` child process (under mpirun for the distributed ones).
 #include "bench_scaling.hpp"
 
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -61,7 +65,24 @@ struct Measurement {
   double zones = 0, cycles = 0, loop_seconds = 0, load = 0;
   // per cycle, the largest over the ranks (docs/parallel.md): messages and bytes sent, halo seconds
   double messages = 0, bytes = 0, halo_seconds = 0, ghost_fraction = 0;
+  // Peak resident set (docs/parallel.md, "Memory"): the sum over the ranks (ranks.csv), or
+  // the run's own when serial.
+  double peak_bytes = 0;
 };
+
+// std::system, and the peak resident set of the largest process the command ran (wait4).
+int system_with_peak(const std::string& command, double& peak_bytes) {
+  const pid_t child = fork();
+  if (child == 0) {
+    execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  int status = 0;
+  rusage usage{};
+  if (child < 0 || wait4(child, &status, 0, &usage) != child) return -1;
+  peak_bytes = 1024.0 * static_cast<double>(usage.ru_maxrss);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
 
 // Runs `stagger run` (under mpirun when ranks > 1) into `out`; fills the measurement.
 void run(const std::string& stagger, const fs::path& scene, const std::string& sets, int ranks, int threads,
@@ -75,7 +96,7 @@ void run(const std::string& stagger, const fs::path& scene, const std::string& s
   m.ranks = ranks;
   m.threads = threads;
   m.load = load_average();
-  const int code = std::system(command.c_str());
+  const int code = system_with_peak(command, m.peak_bytes);
   const std::string summary = read_text(out / "summary.json");
   m.status = code == 0 && summary.find("\"status\": \"completed\"") != std::string::npos ? "completed" : "failed";
   if (m.status == "failed") {
@@ -95,6 +116,7 @@ void run(const std::string& stagger, const fs::path& scene, const std::string& s
   std::istringstream rows(read_text(out / "ranks.csv"));
   std::string line;
   std::getline(rows, line);
+  double rank_peaks = 0;
   while (std::getline(rows, line)) {
     std::vector<double> v;
     std::istringstream fields(line);
@@ -105,7 +127,9 @@ void run(const std::string& stagger, const fs::path& scene, const std::string& s
     m.bytes = std::max(m.bytes, v[8] / v[11]);
     m.halo_seconds = std::max(m.halo_seconds, v[9] / v[11]);
     m.ghost_fraction = std::max(m.ghost_fraction, v[2] / std::max(1.0, v[1]));
+    if (v.size() > 12) rank_peaks += v[12];
   }
+  if (ranks > 1) m.peak_bytes = rank_peaks;
 }
 
 std::string median_of(std::vector<double> values, double& median) {
@@ -139,6 +163,7 @@ int scaling_suite(const fs::path& scenes, const fs::path& out_dir, bool quick, i
   std::vector<Measurement> all;
   std::map<std::string, double> median_rate;
   std::ostringstream report;
+  std::map<std::string, double> peak;
   for (const Config& c : configs) {
     std::vector<double> rates;
     for (int k = 0; k < repeat; ++k) {
@@ -149,12 +174,14 @@ int scaling_suite(const fs::path& scenes, const fs::path& out_dir, bool quick, i
       run(stagger, sedov, sets, c.ranks, c.threads,
           out_dir / "scaling_runs" / ("r" + std::to_string(c.ranks) + "t" + std::to_string(c.threads)), m);
       if (m.status == "completed" && m.loop_seconds > 0) rates.push_back(m.zones * m.cycles / m.loop_seconds);
+      if (m.status == "completed") peak[c.name] = std::max(peak[c.name], m.peak_bytes / m.zones);
       all.push_back(m);
     }
     double median = 0;
     const std::string list = median_of(rates, median);
     median_rate[c.name] = median;
-    report << "  " << c.name << ": median " << median << " zone-cycles/s (runs: " << list << ")\n";
+    report << "  " << c.name << ": median " << median << " zone-cycles/s (runs: " << list << "), peak memory "
+           << peak[c.name] << " bytes per zone\n";
   }
   // Correctness: 8 ranks oversubscribed against the serial run, bit for bit.
   const std::string small =
@@ -176,11 +203,12 @@ int scaling_suite(const fs::path& scenes, const fs::path& out_dir, bool quick, i
   std::ostringstream csv;
   csv.precision(10);
   csv << "run,ranks,threads,zones,cycles,loop_seconds,zone_cycles_per_second,load_average,messages_per_cycle,"
-         "bytes_per_cycle,halo_seconds_per_cycle,ghost_fraction,status\n";
+         "bytes_per_cycle,halo_seconds_per_cycle,ghost_fraction,peak_rss_bytes,status\n";
   for (const Measurement& m : all)
     csv << m.name << "," << m.ranks << "," << m.threads << "," << m.zones << "," << m.cycles << "," << m.loop_seconds
         << "," << (m.loop_seconds > 0 ? m.zones * m.cycles / m.loop_seconds : 0) << "," << m.load << "," << m.messages
-        << "," << m.bytes << "," << m.halo_seconds << "," << m.ghost_fraction << "," << m.status << "\n";
+        << "," << m.bytes << "," << m.halo_seconds << "," << m.ghost_fraction << "," << m.peak_bytes << "," << m.status
+        << "\n";
   const fs::path csv_path = out_dir / "scaling.csv";
   write_file_atomically(csv_path.string(), csv.str());
   const double one = median_rate["1 rank x 1 thread"];

@@ -2,6 +2,7 @@
 // run.hpp, output.hpp, meshgen.hpp, mesh.hpp).
 #include "commands.hpp"
 
+#include <malloc.h>
 #include <omp.h>
 #include <unistd.h>
 
@@ -198,6 +199,7 @@ int run_command(const std::vector<std::string>& args) {
     if (arguments.has("--out")) control.output_directory = arguments.value("--out");
     check_output_directory(control.output_directory);
   });
+  malloc_trim(0);             // the mesh build's temporaries, before the set-up (docs/parallel.md, "Memory")
   control.progress = !quiet;  // every 0.2 s on a terminal, a line every 10 s in a log
   for (const auto& note : scene.notes)
     if (!quiet && root) std::cerr << "stagger: note: " << note << "\n";

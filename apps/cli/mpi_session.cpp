@@ -1,6 +1,8 @@
 // `stagger run` under mpirun (mpi_session.hpp, docs/parallel.md).
 #include "mpi_session.hpp"
 
+#include <sys/resource.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
@@ -79,6 +81,12 @@ Simulation distributed_simulation(Problem problem) {
   return Simulation(std::move(problem));
 }
 
+double peak_resident_bytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return 1024.0 * static_cast<double>(usage.ru_maxrss);  // Linux: kilobytes
+}
+
 void write_rank_statistics([[maybe_unused]] const Simulation& simulation, [[maybe_unused]] const std::string& directory,
                            [[maybe_unused]] double loop_seconds) {
 #ifdef STAGGER_WITH_MPI
@@ -93,7 +101,8 @@ void write_rank_statistics([[maybe_unused]] const Simulation& simulation, [[mayb
                                     static_cast<double>(h.messages),
                                     h.bytes,
                                     h.seconds,
-                                    loop_seconds};
+                                    loop_seconds,
+                                    peak_resident_bytes()};
   const int ranks = simulation.ranks(), n = static_cast<int>(mine.size());
   std::vector<double> all(static_cast<std::size_t>(n) * ranks);
   MPI_Gather(mine.data(), n, MPI_DOUBLE, all.data(), n, MPI_DOUBLE, 0, MPI_COMM_WORLD);
@@ -101,11 +110,11 @@ void write_rank_statistics([[maybe_unused]] const Simulation& simulation, [[mayb
   std::ostringstream out;
   out.precision(17);
   out << "rank,owned_zones,ghost_zones,owned_points,ghost_points,neighbours,exchanges,messages,bytes,halo_seconds,"
-         "loop_seconds,cycles\n";
+         "loop_seconds,cycles,peak_rss_bytes\n";
   for (int r = 0; r < ranks; ++r) {
     out << r;
-    for (int k = 0; k < n; ++k) out << "," << all[static_cast<std::size_t>(r) * n + k];
-    out << "," << simulation.cycle() << "\n";
+    for (int k = 0; k + 1 < n; ++k) out << "," << all[static_cast<std::size_t>(r) * n + k];
+    out << "," << simulation.cycle() << "," << all[static_cast<std::size_t>(r) * n + n - 1] << "\n";
   }
   write_file_atomically((std::filesystem::path(directory.empty() ? "." : directory) / "ranks.csv").string(), out.str());
 #endif

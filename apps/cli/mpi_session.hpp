@@ -36,7 +36,9 @@ Simulation distributed_simulation(Problem problem);
 
 // A distributed run's per-rank figures (docs/parallel.md): rank 0 writes DIR/ranks.csv, one row
 // per rank: zones and points held, neighbours, the ghost exchanges' messages, bytes and seconds,
-// and the rank's loop seconds. Collective; nothing in a serial run.
+// the rank's loop seconds and its peak resident set. Collective; nothing in a serial run.
 void write_rank_statistics(const Simulation& simulation, const std::string& directory, double loop_seconds);
+// This process's peak resident set so far, in bytes (getrusage; docs/parallel.md, "Memory").
+double peak_resident_bytes();
 
 }  // namespace stagger::cli

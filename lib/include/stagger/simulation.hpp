@@ -114,7 +114,9 @@ class Simulation {
   int ranks() const;  ///< the number of ranks (1 in a serial run)
   /// The whole state: this Simulation in a serial run; in a distributed run, on rank 0 a
   /// serial Simulation holding the gathered state (valid until the next gather()), null on
-  /// the other ranks.
+  /// the other ranks. A gathered state serves the field accessors, mesh(), energy(),
+  /// momentum() and output_fields(); it does not carry the step's scratch or corner forces,
+  /// so it is no source for checkpoint() (docs/parallel.md, "Memory").
   const Simulation* gather() const;
   /// The serial numbers of this part's zones and points, and which of its zones are ghosts
   /// (another rank's); empty in a serial run.

@@ -258,12 +258,12 @@ void check_overlaps(const Mesh& mesh, const std::vector<std::size_t>& polygon_of
   const auto buckets = [&](std::size_t count, auto box_of, std::vector<std::int64_t>& begin,
                            std::vector<Index>& items) {
     begin.assign(static_cast<std::size_t>(nx * ny) + 1, 0);
+    // Counts in begin[cell + 1]; the fill advances begin[cell] itself and the shift back
+    // restores the starts (no second array of the grid's size: the peak of a large mesh).
     for (int pass = 0; pass < 2; ++pass) {
-      std::vector<std::int64_t> fill;
       if (pass == 1) {
         for (std::size_t c = 1; c < begin.size(); ++c) begin[c] += begin[c - 1];
         items.resize(static_cast<std::size_t>(begin.back()));
-        fill.assign(begin.begin(), begin.end() - 1);
       }
       for (std::size_t item = 0; item < count; ++item) {
         const Box b = box_of(item);
@@ -273,10 +273,12 @@ void check_overlaps(const Mesh& mesh, const std::vector<std::size_t>& polygon_of
             if (pass == 0)
               ++begin[cell + 1];
             else
-              items[static_cast<std::size_t>(fill[cell]++)] = static_cast<Index>(item);
+              items[static_cast<std::size_t>(begin[cell]++)] = static_cast<Index>(item);
           }
       }
     }
+    for (std::size_t c = begin.size() - 1; c > 0; --c) begin[c] = begin[c - 1];
+    begin[0] = 0;
   };
   const auto point_text = [&](Index p) {
     std::ostringstream t;
@@ -511,6 +513,9 @@ Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options, MeshBu
     mesh.zone_corner_begin[z + 1] = c;
     mesh.zone_region[z] = region_of(f);
   }
+  // Drop what the corners were read from before the checks below allocate (peak memory).
+  cpoints = {};
+  zone_of_polygon = {};
 
   // CSR point -> corners; filling in corner order keeps each list ascending.
   const Index npoints = mesh.num_points();

@@ -3,7 +3,7 @@
 // collective operations the step asks for (lib/src/hydro/collective.hpp).
 //
 // Why the bits are the serial ones (docs/parallel.md, "Determinism"):
-//  - every rank sets up the whole problem as the serial run does, and copies its part of
+//  - rank 0 sets up the whole problem as the serial run does and sends each rank its part of
 //    that state, so the initial state is the serial one bit for bit;
 //  - a rank's zones, points and corners keep the serial (global) order, so each point sums
 //    its corner forces in the serial order;
@@ -12,6 +12,7 @@
 //    exchange iterates over the state table, so a new state array is exchanged too);
 //  - failures and the time step are global minima (ties to the lowest global zone), and
 //    totals are exact sums (hydro/exact_sum.hpp).
+#include <malloc.h>
 #include <metis.h>
 
 #include <algorithm>
@@ -87,6 +88,15 @@ std::vector<int> partition_zones(const Mesh& m, int parts) {
     throw Error("METIS could not partition the " + std::to_string(nz) + " zones of " + m.source + " into " +
                 std::to_string(parts) + " parts (status " + std::to_string(status) + ")");
   return std::vector<int>(part.begin(), part.end());
+}
+
+// The state arrays the whole state on rank 0 keeps for the gathers (dumps, summary,
+// references): the dumped ones and those behind Simulation's accessors. The rest (the step's
+// scratch, the corner forces, set-up constants) nothing reads from it.
+bool gathered(const StateField& f) {
+  using I = Simulation::Impl;
+  return (f.flags & kDumped) || f.member == &I::x || f.member == &I::y || f.member == &I::point_mass ||
+         f.member == &I::zone_mass || f.member == &I::area;
 }
 
 // One rank's part: its zones and the ghost layers, in global order.
@@ -207,18 +217,18 @@ class MpiCollective final : public Collective {
   std::vector<int> point_owner;    // global point -> rank
   std::vector<Index> point_local;  // global point -> this rank's local point, -1 when absent
   std::vector<Neighbour> neighbours;
-  std::vector<const StateField*> fields;        // the present state arrays, in table order
-  std::vector<const StateField*> remap_fields;  // those an ALE remap changes: the remapped ones, x and y
-  std::vector<Index> own_points, own_zones, own_corners;
-  // Rank 0: the whole state, and every rank's owned points, zones and corners (global).
+  std::vector<const StateField*> fields;                  // the present state arrays, in table order
+  std::vector<const StateField*> gathered_fields;         // those the whole state on rank 0 serves
+  std::vector<const StateField*> remap_fields;            // those an ALE remap changes: the remapped ones, x and y
+  std::vector<Index> own_points, own_zones, own_corners;  // own_corners: ALE only (corner masses)
+  // Rank 0: the whole state (only its gathered arrays, or all of them for an ALE remap), and
+  // every rank's owned points, zones and (ALE) corners, global; the gather's buffers are
+  // transient (docs/parallel.md, "Memory").
   std::unique_ptr<Simulation> whole;
   std::vector<std::vector<Index>> rank_points, rank_zones, rank_corners;
-  std::vector<int> gather_counts, gather_offsets;
-  std::vector<double> gather_send, gather_recv;
   // The ALE remap (docs/parallel.md, "ALE"): rank 0 keeps every rank's whole part (owned and
   // ghost points and zones, global) to send it the remapped state.
   std::vector<std::vector<Index>> part_points, part_zones;
-  std::vector<double> scatter_buffer;
   std::vector<MPI_Request> requests;
   // Halo statistics (docs/parallel.md): exchanges, messages and bytes sent, seconds.
   long exchanges = 0, messages = 0;
@@ -347,41 +357,39 @@ class MpiCollective final : public Collective {
     halo_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
 
-  // Rank 0's whole state gets every rank's owned values of the arrays `list` (of `fields`).
+  // Rank 0's whole state gets every rank's owned values of the arrays `list` (of `fields`),
+  // one array at a time: the buffers stay one array of the whole problem long.
   void gather_fields(const Simulation::Impl& s, const std::vector<const StateField*>& list) {
-    double* out = gather_send.data();
+    std::vector<double> send, recv;
+    std::vector<int> counts, offsets;
     for (const StateField* f : list) {
-      const double* values = (s.*(f->member)).data();
       const auto& own = f->entity == Entity::point ? own_points : f->entity == Entity::zone ? own_zones : own_corners;
-      for (Index i : own) *out++ = values[i];
-    }
-    if (my_rank == 0) {
-      int total = 0;
-      for (int q = 0; q < size; ++q) {
-        int count = 0;
-        for (const StateField* f : list)
-          count += static_cast<int>(f->entity == Entity::point  ? rank_points[q].size()
-                                    : f->entity == Entity::zone ? rank_zones[q].size()
-                                                                : rank_corners[q].size());
-        gather_counts[q] = count;
-        gather_offsets[q] = total;
-        total += count;
+      const auto& ids = [&](int q) -> const std::vector<Index>& {
+        return f->entity == Entity::point  ? rank_points[q]
+               : f->entity == Entity::zone ? rank_zones[q]
+                                           : rank_corners[q];
+      };
+      const double* values = (s.*(f->member)).data();
+      send.clear();
+      for (Index i : own) send.push_back(values[i]);
+      if (my_rank == 0) {
+        counts.assign(size, 0), offsets.assign(size, 0);
+        for (int q = 0; q < size; ++q) {
+          counts[q] = static_cast<int>(ids(q).size());
+          offsets[q] = q == 0 ? 0 : offsets[q - 1] + counts[q - 1];
+        }
+        recv.resize(static_cast<std::size_t>(offsets[size - 1]) + counts[size - 1]);
       }
+      MPI_Gatherv(send.data(), static_cast<int>(send.size()), MPI_DOUBLE, recv.data(), counts.data(), offsets.data(),
+                  MPI_DOUBLE, 0, comm);
+      if (my_rank != 0) continue;
+      double* whole_values = (DistributedAccess::impl(*whole).*(f->member)).data();
+      const double* in = recv.data();
+      for (int q = 0; q < size; ++q)
+        for (Index i : ids(q)) whole_values[i] = *in++;
     }
-    MPI_Gatherv(gather_send.data(), static_cast<int>(out - gather_send.data()), MPI_DOUBLE, gather_recv.data(),
-                gather_counts.data(), gather_offsets.data(), MPI_DOUBLE, 0, comm);
     if (my_rank != 0) return;
     Simulation::Impl& w = DistributedAccess::impl(*whole);
-    for (int q = 0; q < size; ++q) {
-      const double* in = gather_recv.data() + gather_offsets[q];
-      for (const StateField* f : list) {
-        double* values = (w.*(f->member)).data();
-        const auto& ids = f->entity == Entity::point  ? rank_points[q]
-                          : f->entity == Entity::zone ? rank_zones[q]
-                                                      : rank_corners[q];
-        for (Index i : ids) values[i] = *in++;
-      }
-    }
     // The scalars are the same on every rank (dt_zone is already global).
     w.t = s.t, w.dt_last = s.dt_last, w.dt_next = s.dt_next, w.dt_control_prev = s.dt_control_prev;
     w.cycle = s.cycle, w.have_previous_forces = s.have_previous_forces;
@@ -390,7 +398,7 @@ class MpiCollective final : public Collective {
   }
 
   const Simulation* gather(const Simulation::Impl& s) override {
-    gather_fields(s, fields);
+    gather_fields(s, gathered_fields);
     return my_rank == 0 ? whole.get() : nullptr;
   }
 
@@ -443,6 +451,7 @@ class MpiCollective final : public Collective {
   // Rank 0's whole state to every rank's part: every array the remap changes, at each of its
   // points, zones and corners, owned or ghost (one message per rank).
   void scatter(Simulation::Impl& s) {
+    std::vector<double> scatter_buffer;  // transient, as the gathers' (docs/parallel.md, "Memory")
     const auto size_of = [&](std::size_t points, std::size_t zones, std::size_t corners) {
       std::size_t n = 0;
       for (const StateField* f : remap_fields)
@@ -504,22 +513,29 @@ class DistributedRemap final : public Remap {
 };
 
 // A part on the wire (rank 0 to its rank): plain bytes, sizes before arrays.
+// A counting pass first (`counting`) sizes the buffer, so that packing never doubles it.
 struct Packer {
   std::string data;
+  bool counting = false;
+  std::size_t size = 0;
+  void append(const char* bytes, std::size_t n) {
+    size += n;
+    if (!counting) data.append(bytes, n);
+  }
   template <class T>
   void value(const T& x) {
     static_assert(std::is_trivially_copyable_v<T>);
-    data.append(reinterpret_cast<const char*>(&x), sizeof x);
+    append(reinterpret_cast<const char*>(&x), sizeof x);
   }
   template <class T>
   void put(const std::vector<T>& v) {
     static_assert(std::is_trivially_copyable_v<T>);
     value(static_cast<std::uint64_t>(v.size()));
-    data.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+    append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
   }
   void put(const std::string& text) {
     value(static_cast<std::uint64_t>(text.size()));
-    data.append(text);
+    append(text.data(), text.size());
   }
 };
 
@@ -557,12 +573,30 @@ struct Unpacker {
   }
 };
 
-// Everything a rank needs of its part (distribute() unpacks it in this order).
-std::string pack_part(const Simulation::Impl& g, const Part& part) {
-  Packer out;
+// One state array's values on a part (its zones, points, or the corners of its zones).
+void part_values(const Simulation::Impl& g, const StateField& f, const std::vector<Index>& zones,
+                 const std::vector<Index>& points, std::vector<double>& values) {
+  const std::vector<double>& from = g.*f.member;
+  values.clear();
+  switch (f.entity) {
+    case Entity::point:
+      for (Index p : points) values.push_back(from[p]);
+      break;
+    case Entity::zone:
+      for (Index z : zones) values.push_back(from[z]);
+      break;
+    case Entity::corner:
+      for (Index z : zones)
+        for (Index k = g.zone_corner_begin[z]; k < g.zone_corner_begin[z + 1]; ++k) values.push_back(from[k]);
+      break;
+  }
+}
+
+// Everything a rank needs of its part but the state arrays, which follow one message per
+// array (distribute() unpacks it in this order).
+void pack_part(Packer& out, const Simulation::Impl& g, const Part& part, const Mesh& local) {
   out.put(part.zones);
   out.put(part.points);
-  const Mesh local = part_mesh(g.mesh(), part);
   out.put(local.source);
   out.value(static_cast<std::uint64_t>(local.region_names.size()));
   for (const std::string& name : local.region_names) out.put(name);
@@ -573,25 +607,6 @@ std::string pack_part(const Simulation::Impl& g, const Part& part) {
   for (const BoundaryTag& tag : local.tags) out.put(tag.name), out.put(tag.edges), out.put(tag.points);
   out.value(g.any_strength), out.value(g.any_burn), out.value(g.all_quads), out.value(g.edge_viscosity);
   out.value(g.has_external), out.value(g.dt_min);
-  std::vector<double> values;
-  for (const StateField& f : state_fields()) {
-    if (!present(g, f.presence)) continue;
-    const std::vector<double>& from = g.*f.member;
-    values.clear();
-    switch (f.entity) {
-      case Entity::point:
-        for (Index p : part.points) values.push_back(from[p]);
-        break;
-      case Entity::zone:
-        for (Index z : part.zones) values.push_back(from[z]);
-        break;
-      case Entity::corner:
-        for (Index z : part.zones)
-          for (Index k = g.zone_corner_begin[z]; k < g.zone_corner_begin[z + 1]; ++k) values.push_back(from[k]);
-        break;
-    }
-    out.put(values);
-  }
   out.value(g.t), out.value(g.dt_last), out.value(g.dt_next), out.value(g.dt_control_prev);
   out.value(g.cycle), out.value(g.have_previous_forces), out.value(g.dt_zone);
   out.value(g.energy_initial), out.value(g.boundary_work), out.value(g.source_work);
@@ -602,6 +617,16 @@ std::string pack_part(const Simulation::Impl& g, const Part& part) {
   out.value(w.ny);
   out.put(w.cell_begin);
   out.put(w.items);
+}
+
+std::string pack_part(const Simulation::Impl& g, const Part& part) {
+  const Mesh local = part_mesh(g.mesh(), part);
+  Packer out;
+  out.counting = true;
+  pack_part(out, g, part, local);
+  out.data.reserve(out.size);
+  out.counting = false;
+  pack_part(out, g, part, local);
   return std::move(out.data);
 }
 
@@ -685,23 +710,27 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
   MPI_Comm c = collective->comm;
   collective->my_rank = rank;
   collective->size = size;
-  // Rank 0 sets up the whole problem as the serial run does (its errors reach every rank),
-  // partitions it and sends every other rank its part; the other ranks drop their copy of
-  // the mesh first, so they never hold more than the scene's mesh and their part.
+  // Rank 0 partitions the scene's mesh, sets up the whole problem as the serial run does (its
+  // errors reach every rank) and sends every other rank its part; the other ranks drop their
+  // copy of the mesh first, so they never hold more than the scene's mesh and their part.
+  // METIS runs before the set-up (which keeps the mesh's connectivity), so that its work
+  // space is handed back before the whole state is built (docs/parallel.md, "Memory").
+  std::vector<int>& owner = collective->zone_owner;
+  on_every_rank(c, [&] {
+    if (rank == 0) owner = partition_zones(problem.mesh, size);
+  });
+  malloc_trim(0);
   std::unique_ptr<Simulation> whole;
   on_every_rank(c, [&] {
     if (rank == 0) whole = std::make_unique<Simulation>(std::move(problem));
   });
   problem = Problem{};
+  malloc_trim(0);  // the other ranks' copy of the mesh, before their part arrives
   const Simulation::Impl* g = rank == 0 ? &DistributedAccess::impl(*whole) : nullptr;
   int sizes[2] = {g ? g->mesh().num_zones() : 0, g ? g->mesh().num_points() : 0};
   MPI_Bcast(sizes, 2, MPI_INT, 0, c);
   const Index global_zones = sizes[0], global_points = sizes[1];
-  std::vector<int>& owner = collective->zone_owner;
-  owner.assign(global_zones, 0);
-  on_every_rank(c, [&] {
-    if (rank == 0) owner = partition_zones(g->mesh(), size);
-  });
+  owner.resize(global_zones, 0);
   MPI_Bcast(owner.data(), global_zones, MPI_INT, 0, c);
   std::vector<Index> per_rank(size, 0);
   for (int o : owner) ++per_rank[o];
@@ -717,26 +746,29 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
   }
   MPI_Bcast(point_owner.data(), global_points, MPI_INT, 0, c);
 
-  // Rank 0 packs each part (mesh, state, walls, configuration) and sends it; the last is its own.
+  // Rank 0 packs each part (mesh, walls, configuration) and sends it; the last is its own.
+  // The state arrays follow once every rank has set its part up, one message per array, so
+  // that no rank holds its part's state twice (docs/parallel.md, "Memory").
   std::string packed;
+  std::vector<std::vector<Index>> part_zones, part_points;  // rank 0: every part's, global
   if (g) {
+    part_zones.resize(size);
+    part_points.resize(size);
     for (int q = size - 1; q >= 0; --q) {
       // Two layers: the corner forces of the zones around this rank's points and their
       // predicted velocities; a third for the edge viscosity's neighbours (docs/parallel.md).
       Part part = make_part(g->mesh(), owner, q, g->edge_viscosity ? 3 : 2);
+      packed = std::string();
       packed = pack_part(*g, part);
-      if (g->remap) {
-        collective->part_points.resize(size);
-        collective->part_zones.resize(size);
-        collective->part_points[q] = std::move(part.points);
-        collective->part_zones[q] = std::move(part.zones);
-      }
+      part_zones[q] = std::move(part.zones);
+      part_points[q] = std::move(part.points);
       if (q == 0) break;
       if (packed.size() > static_cast<std::size_t>(INT_MAX))
         throw Error("the part of rank " + std::to_string(q) + " is too large for one MPI message (" +
                     std::to_string(packed.size()) + " bytes); run on more ranks");
       MPI_Send(packed.data(), static_cast<int>(packed.size()), MPI_BYTE, q, kHaloTag, c);
     }
+    malloc_trim(0);  // the parts' meshes and the other ranks' packed parts
   } else {
     MPI_Status status;
     MPI_Probe(0, kHaloTag, c, &status);
@@ -745,48 +777,113 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
     packed.resize(count);
     MPI_Recv(packed.data(), count, MPI_BYTE, 0, kHaloTag, c, MPI_STATUS_IGNORE);
   }
-  Unpacker in(packed);
   Part part;
-  in.get(part.zones);
-  in.get(part.points);
-  part_problem.mesh = unpack_mesh(in);
+  std::string rest;  // what follows the mesh (flags, scalars, walls): read after the set-up
+  {
+    Unpacker in(packed);
+    in.get(part.zones);
+    in.get(part.points);
+    part_problem.mesh = unpack_mesh(in);
+    rest = packed.substr(in.at);
+    packed = std::string();
+  }
+  Unpacker in(rest);
   part.zone_local.assign(global_zones, -1);
   part.point_local.assign(global_points, -1);
   for (std::size_t i = 0; i < part.zones.size(); ++i) part.zone_local[part.zones[i]] = static_cast<Index>(i);
   for (std::size_t i = 0; i < part.points.size(); ++i) part.point_local[part.points[i]] = static_cast<Index>(i);
+  // A part's set-up, then the whole problem's configuration read from `rest`.
   std::unique_ptr<Simulation> local;
-  on_every_rank(c, [&] { local = std::make_unique<Simulation>(std::move(part_problem)); });
-  Simulation::Impl& s = DistributedAccess::impl(*local);
-  // The flags that decide which arrays exist and which kernel variants run: the whole
-  // problem's (a part may lack the region or boundary that sets one).
-  in.value(s.any_strength);
-  in.value(s.any_burn);
-  in.value(s.all_quads);
-  in.value(s.edge_viscosity);
-  in.value(s.has_external);
-  in.value(s.dt_min);
-  allocate_state(s);  // the arrays of the whole problem's configuration
-  // The state: the serial set-up's, bit for bit.
+  const auto set_up_part = [&] {
+    local = std::make_unique<Simulation>(std::move(part_problem));
+    Simulation::Impl& s = DistributedAccess::impl(*local);
+    // The flags that decide which arrays exist and which kernel variants run: the whole
+    // problem's (a part may lack the region or boundary that sets one).
+    in.value(s.any_strength);
+    in.value(s.any_burn);
+    in.value(s.all_quads);
+    in.value(s.edge_viscosity);
+    in.value(s.has_external);
+    in.value(s.dt_min);
+    allocate_state(s);  // the arrays of the whole problem's configuration
+    in.value(s.t), in.value(s.dt_last), in.value(s.dt_next), in.value(s.dt_control_prev);
+    in.value(s.cycle), in.value(s.have_previous_forces), in.value(s.dt_zone);
+    in.value(s.energy_initial), in.value(s.boundary_work), in.value(s.source_work);
+    // The walls as fixed lines (the no-crossing check): the whole problem's, so that a point is
+    // tested against every wall as in the serial run; a wall point off this part becomes -2 - its number.
+    in.get(s.wall_edges);
+    in.get(s.wall_rays);
+    in.value(s.wall_grid.x0), in.value(s.wall_grid.y0), in.value(s.wall_grid.x1), in.value(s.wall_grid.y1);
+    in.value(s.wall_grid.inv_h), in.value(s.wall_grid.nx), in.value(s.wall_grid.ny);
+    in.get(s.wall_grid.cell_begin);
+    in.get(s.wall_grid.items);
+    in.expect_end();
+    rest = std::string();
+  };
+  // The state: the serial set-up's, bit for bit, one array at a time. The other ranks set
+  // their parts up and receive; rank 0 sets its own up last, once the whole state has dropped
+  // the arrays it does not keep (gathered()), its own values of those set aside: the whole
+  // state and rank 0's part are never both complete (docs/parallel.md, "Memory"). An ALE
+  // scene's whole state keeps every array: the serial remap runs on it (docs/parallel.md, "ALE").
+  on_every_rank(c, [&] {
+    if (rank != 0) set_up_part();
+  });
+  const auto check = [](const StateField& f, std::size_t size, std::size_t expected) {
+    if (size != expected) throw Error(std::string("internal: the part's state array '") + f.name + "' differs");
+  };
+  std::vector<double> values;
+  std::vector<std::vector<double>> own;  // rank 0: its part's values of the arrays the whole drops
   for (const StateField& f : state_fields()) {
-    if (!present(s, f.presence)) continue;
-    std::vector<double>& to = s.*f.member;
-    const std::size_t expected = to.size();
-    in.get(to);
-    if (to.size() != expected) throw Error(std::string("internal: the part's state array '") + f.name + "' differs");
+    if (g) {
+      if (!present(*g, f.presence)) continue;
+      for (int q = 1; q < size; ++q) {
+        part_values(*g, f, part_zones[q], part_points[q], values);
+        MPI_Send(values.data(), static_cast<int>(values.size()), MPI_DOUBLE, q, kHaloTag, c);
+      }
+      if (gathered(f) || g->remap) continue;
+      own.emplace_back();
+      part_values(*g, f, part_zones[0], part_points[0], own.back());
+      std::vector<double>().swap(DistributedAccess::impl(*whole).*f.member);
+    } else {
+      Simulation::Impl& s = DistributedAccess::impl(*local);
+      if (!present(s, f.presence)) continue;
+      std::vector<double>& to = s.*f.member;
+      MPI_Status status;
+      MPI_Recv(to.data(), static_cast<int>(to.size()), MPI_DOUBLE, 0, kHaloTag, c, &status);
+      int count = 0;
+      MPI_Get_count(&status, MPI_DOUBLE, &count);
+      check(f, static_cast<std::size_t>(count), to.size());
+    }
   }
-  in.value(s.t), in.value(s.dt_last), in.value(s.dt_next), in.value(s.dt_control_prev);
-  in.value(s.cycle), in.value(s.have_previous_forces), in.value(s.dt_zone);
-  in.value(s.energy_initial), in.value(s.boundary_work), in.value(s.source_work);
-  // The walls as fixed lines (the no-crossing check): the whole problem's, so that a point is
-  // tested against every wall as in the serial run; a wall point off this part becomes -2 - its number.
-  in.get(s.wall_edges);
-  in.get(s.wall_rays);
-  in.value(s.wall_grid.x0), in.value(s.wall_grid.y0), in.value(s.wall_grid.x1), in.value(s.wall_grid.y1);
-  in.value(s.wall_grid.inv_h), in.value(s.wall_grid.nx), in.value(s.wall_grid.ny);
-  in.get(s.wall_grid.cell_begin);
-  in.get(s.wall_grid.items);
-  in.expect_end();
-  packed = std::string();
+  values = std::vector<double>();
+  malloc_trim(0);
+  on_every_rank(c, [&] {
+    if (rank == 0) set_up_part();
+  });
+  Simulation::Impl& s = DistributedAccess::impl(*local);
+  if (g) {
+    std::size_t k = 0;
+    for (const StateField& f : state_fields()) {
+      if (!present(s, f.presence)) continue;
+      std::vector<double>& to = s.*f.member;
+      const std::size_t expected = to.size();
+      if (gathered(f) || g->remap) {
+        part_values(*g, f, part_zones[0], part_points[0], to);
+      } else {
+        to.swap(own.at(k));
+        std::vector<double>().swap(own[k++]);  // freed now: the maps below reuse it
+      }
+      check(f, to.size(), expected);
+    }
+  }
+  own = {};
+  if (g && g->remap) {
+    // The ALE remap sends every part its remapped state (MpiCollective::scatter).
+    collective->part_zones = std::move(part_zones);
+    collective->part_points = std::move(part_points);
+  }
+  part_zones = {};
+  part_points = {};
   for (auto* walls : {&s.wall_edges, &s.wall_rays})
     for (WallEdge& w : *walls) {
       w.a = part.point_local[w.a] >= 0 ? part.point_local[w.a] : -2 - w.a;
@@ -815,7 +912,7 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
     if (!s.ghost_zone[z]) collective->own_zones.push_back(z);
   for (Index p = 0; p < np; ++p)
     if (!s.ghost_point[p]) collective->own_points.push_back(p);
-  append_corners(s, collective->own_zones, collective->own_corners);
+  if (s.remap) append_corners(s, collective->own_zones, collective->own_corners);  // the corner masses
   collective->zone_local = std::move(part.zone_local);
   collective->point_owner = point_owner;
   collective->point_local = part.point_local;
@@ -871,36 +968,23 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
     collective->neighbours.push_back(std::move(n));
   }
 
-  // Gather to rank 0 (dumps, summary): every rank's owned entities, in global order.
-  const std::size_t own_values = per_point * collective->own_points.size() + per_zone * collective->own_zones.size() +
-                                 per_corner * collective->own_corners.size();
-  collective->gather_send.resize(own_values);
+  // Gather to rank 0 (dumps, summary, references): every rank's owned points and zones, in
+  // global order, of the arrays the whole state serves (gathered()); for an ALE remap also
+  // every rank's owned corners (the remapped corner masses).
+  for (const StateField* f : collective->fields)
+    if (gathered(*f)) collective->gathered_fields.push_back(f);
   if (rank == 0) {
     const Mesh& m = g->mesh();
     collective->rank_points.resize(size);
     collective->rank_zones.resize(size);
-    collective->rank_corners.resize(size);
     for (Index p = 0; p < m.num_points(); ++p) collective->rank_points[point_owner[p]].push_back(p);
-    for (Index z = 0; z < m.num_zones(); ++z) {
-      collective->rank_zones[owner[z]].push_back(z);
-      for (Index k = m.zone_corner_begin[z]; k < m.zone_corner_begin[z + 1]; ++k)
-        collective->rank_corners[owner[z]].push_back(k);
+    for (Index z = 0; z < m.num_zones(); ++z) collective->rank_zones[owner[z]].push_back(z);
+    if (g->remap) {
+      collective->rank_corners.resize(size);
+      for (Index z = 0; z < m.num_zones(); ++z)
+        for (Index k = m.zone_corner_begin[z]; k < m.zone_corner_begin[z + 1]; ++k)
+          collective->rank_corners[owner[z]].push_back(k);
     }
-    collective->gather_counts.resize(size);
-    collective->gather_offsets.resize(size);
-    std::size_t total = 0;
-    for (int q = 0; q < size; ++q) {
-      const std::size_t count = per_point * collective->rank_points[q].size() +
-                                per_zone * collective->rank_zones[q].size() +
-                                per_corner * collective->rank_corners[q].size();
-      if (total + count > static_cast<std::size_t>(INT_MAX))
-        throw Error("the gathered state is too large for one MPI message (" + std::to_string(total + count) +
-                    " values)");
-      collective->gather_counts[q] = static_cast<int>(count);
-      collective->gather_offsets[q] = static_cast<int>(total);
-      total += count;
-    }
-    collective->gather_recv.resize(total);
     collective->whole = std::move(whole);
   }
   whole.reset();
@@ -908,6 +992,7 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
   // distributed one, which runs the whole problem's on rank 0.
   if (s.remap) s.remap = std::make_shared<DistributedRemap>(s, *collective);
   s.collective = std::move(collective);
+  malloc_trim(0);  // hand the set-up's and the distribution's temporaries back to the OS
   return std::move(*local);
 }
 

@@ -27,6 +27,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "ale/ale_remap.hpp"
 #include "ale/rezone.hpp"
 #include "hydro/collective.hpp"
 #include "hydro/kernels/zone_status.hpp"
@@ -443,6 +444,9 @@ class MpiCollective final : public Collective {
     MPI_Bcast(result, 3, MPI_DOUBLE, 0, comm);
     if (result[0] == 0) return false;
     scatter(s);
+    // rz: the axis corners' planar masses follow from the scattered subcell masses, as after a
+    // serial remap (docs/ale.md, "ALE in rz").
+    if (s.rz) ale_axis_masses(s);
     s.ale_fixup = result[1];
     s.have_previous_forces = result[2] != 0;
     return true;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -140,12 +141,34 @@ TEST(Rezone, PerturbedMeshGetsSmootherAndStaysValid) {
         d_new += std::pow(r.pos.x[p] - mesh.x[p], 2) + std::pow(r.pos.y[p] - mesh.y[p], 2);
       }
       EXPECT_LT(d_new, 0.5 * d_lag) << "seed " << seed;
-      // Relaxation 0.5 lies between: every point halfway (no back-off needed here).
+      // Relaxation 0.5 lies between: every point halfway (no back-off needed here) to the
+      // sweeps' mesh, whose moves are bounded by max_move / relaxation = 1 edge (the bound
+      // max_move = 0.5 is on the relaxed move): the relaxation-1 rezone with max_move = 1.
+      RezoneOptions sweeps = o;
+      sweeps.max_move = 1;
+      const Rezoned full = run_rezone(mesh, rc, sweeps, lag);
       o.relaxation = 0.5;
       const Rezoned half = run_rezone(mesh, rc, o, lag);
       EXPECT_EQ(half.result.backed_off_points, 0);
       for (Index p = 0; p < mesh.num_points(); ++p)
-        EXPECT_NEAR(half.pos.x[p], lag.x[p] + 0.5 * (r.pos.x[p] - lag.x[p]), 1e-15);
+        EXPECT_NEAR(half.pos.x[p], lag.x[p] + 0.5 * (full.pos.x[p] - lag.x[p]), 1e-15);
+      // ... and no relaxed move exceeds max_move = 0.5 of the point's shortest Lagrangian edge.
+      bool cap_reached = false;
+      for (Index p = 0; p < mesh.num_points(); ++p) {
+        double shortest = std::numeric_limits<double>::infinity();
+        for (Index k = mesh.point_corner_begin[p]; k < mesh.point_corner_begin[p + 1]; ++k) {
+          const Index c = mesh.point_corners[k], z = mesh.corner_zone[c];
+          const Index b = mesh.zone_corner_begin[z], e = mesh.zone_corner_begin[z + 1];
+          for (const Index q : {mesh.corner_point[c + 1 == e ? b : c + 1], mesh.corner_point[c == b ? e - 1 : c - 1]})
+            shortest = std::min(shortest, std::hypot(lag.x[q] - lag.x[p], lag.y[q] - lag.y[p]));
+        }
+        const double move = std::hypot(half.pos.x[p] - lag.x[p], half.pos.y[p] - lag.y[p]);
+        EXPECT_LE(move, 0.5 * shortest * (1 + 1e-12)) << "point " << p;
+        cap_reached = cap_reached || move > 0.25 * shortest * (1 + 1e-9);
+      }
+      if (m == RezoneMethod::winslow) {
+        EXPECT_TRUE(cap_reached) << "seed " << seed;
+      }
     }
   }
 }

@@ -570,7 +570,12 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& rc, const RezoneO
     }
   }
   // Each point moves at most max_move times its shortest Lagrangian edge (a gather over the
-  // point's corners, so the loop is parallel).
+  // point's corners, so the loop is parallel). The bound is on the final, relaxed move: the
+  // smoothed move may be 1 / relaxation times longer (up to one edge). Capping the smoothed
+  // move instead leaves relaxation * max_move of an edge per remap, and where the flow closes
+  // an edge (a shock reflecting off a wall) the rezone then cannot reopen it as fast as the
+  // flow shuts it: the cap shrinks with the edge and the zone collapses (docs/ale.md).
+  const double limit_factor = std::min(options.max_move / options.relaxation, 1.0);
 #pragma omp parallel for schedule(static) if (np > 20000)
   for (Index p = 0; p < np; ++p) {
     double shortest2 = std::numeric_limits<double>::infinity();
@@ -584,7 +589,7 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& rc, const RezoneO
         }
       }
     }
-    ws.move_limit[p] = options.max_move * std::sqrt(shortest2);
+    ws.move_limit[p] = limit_factor * std::sqrt(shortest2);
   }
 
   // Slide points this call: the boundary turns by at most corner_angle at the Lagrangian

@@ -54,7 +54,7 @@ class AleRemap final : public Remap {
   std::vector<std::int64_t> stamp_;  // fix-up: points already visited around a point (2 p, 2 p + 1)
   // The arrays a remap writes (those the state table marks remapped) as they were before it:
   // a remap whose fix-up cannot be paid puts them back, so that the run's final dump is the
-  // last good state, not the failed remap's (docs/ale.md, "Energy").
+  // last good state, not the failed remap's (docs/ale.md, "The kinetic-energy fix-up").
   std::vector<StateArray> written_;
   std::vector<std::vector<double>> before_;
 };

@@ -56,23 +56,19 @@ inline Swept swept_quad(double x0, double y0, double x1, double y1, double x2, d
   }
   Swept s;
   s.area = 0.5 * a2;
-  if constexpr (Rz) {
-    // Relative to p0: A, int x', int y', int x'^2, int x'y'; then x = x' + x0, y = y' + y0.
-    const double area = s.area, ix = sx / 6.0, iy = sy / 6.0, ixx = sxx / 12.0, ixy = sxy / 24.0;
-    const double t012 = ax[1] * ay[2] - ax[2] * ay[1], t023 = ax[2] * ay[3] - ax[3] * ay[2];
-    const double t123 = (ax[2] - ax[1]) * (ay[3] - ay[1]) - (ax[3] - ax[1]) * (ay[2] - ay[1]);
-    const double t130 = (ax[3] - ax[1]) * (0 - ay[1]) - (0 - ax[1]) * (ay[3] - ay[1]);
-    s.simple = t012 * t023 >= 0 || t123 * t130 >= 0;
-    s.area = ix + x0 * area;
-    s.mx = ixx + 2 * x0 * ix + x0 * x0 * area - ox * s.area;
-    s.my = ixy + x0 * iy + y0 * ix + x0 * y0 * area - oy * s.area;
-    return s;
-  }
   // Triangles of the two diagonal splits: (0,1,2) + (0,2,3) and (1,2,3) + (1,3,0).
   const double t012 = ax[1] * ay[2] - ax[2] * ay[1], t023 = ax[2] * ay[3] - ax[3] * ay[2];
   const double t123 = (ax[2] - ax[1]) * (ay[3] - ay[1]) - (ax[3] - ax[1]) * (ay[2] - ay[1]);
   const double t130 = (ax[3] - ax[1]) * (0 - ay[1]) - (0 - ax[1]) * (ay[3] - ay[1]);
   s.simple = t012 * t023 >= 0 || t123 * t130 >= 0;
+  if constexpr (Rz) {
+    // Relative to p0: A, int x', int y', int x'^2, int x'y'; then x = x' + x0, y = y' + y0.
+    const double area = s.area, ix = sx / 6.0, iy = sy / 6.0, ixx = sxx / 12.0, ixy = sxy / 24.0;
+    s.area = ix + x0 * area;
+    s.mx = ixx + 2 * x0 * ix + x0 * x0 * area - ox * s.area;
+    s.my = ixy + x0 * iy + y0 * ix + x0 * y0 * area - oy * s.area;
+    return s;
+  }
   s.mx = sx / 6.0 + (x0 - ox) * s.area;
   s.my = sy / 6.0 + (y0 - oy) * s.area;
   return s;

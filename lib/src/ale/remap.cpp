@@ -177,7 +177,13 @@ Remapper::Remapper(const Mesh& mesh, std::span<const int> zone_material, bool rz
   zlsq_.assign(3 * static_cast<std::size_t>(nz), 0.0);
   plsq_.assign(3 * static_cast<std::size_t>(np), 0.0);
   for (auto* v : {&vgx_, &vgy_, &wgx_, &wgy_, &dm_point_, &dpx_, &dpy_, &dke_}) v->assign(np, 0.0);
-  for (auto* v : {&crho_, &ccx_, &ccy_, &cgx_, &cgy_}) v->assign(nc, 0.0);
+  for (auto* v : {&crho_, &ccx_, &ccy_, &cgx_, &cgy_, &lvx_, &lvy_, &lmx_, &lmy_}) v->assign(nc, 0.0);
+  limit_vertex_.assign(nc, 0);
+  for (Index c = 0; c < nc; ++c) limit_vertex_[c] = !boundary_point_[mesh.corner_point[c]];
+  ncx_.assign(zone_nbr_.size(), 0.0);
+  ncy_.assign(zone_nbr_.size(), 0.0);
+  pdx_.assign(point_nbr_.size(), 0.0);
+  pdy_.assign(point_nbr_.size(), 0.0);
   gox_.assign(nz, 0.0);
   goy_.assign(nz, 0.0);
   point_touched_.assign(np, 0);
@@ -259,35 +265,32 @@ void Remapper::zone_gradients(const double* q, bool limiter, double* gx, double*
     gx[z] = gy[z] = 0;
     if (lo) lo[z] = hi[z] = q[z];
     if (!std::isfinite(q[z])) continue;
-    double bx = 0, by = 0, qmin = q[z], qmax = q[z];
+    const double qz = q[z];
+    double bx = 0, by = 0, qmin = qz, qmax = qz;
     bool finite = true;
     for (Index k = zone_nbr_begin_[z]; k < zone_nbr_begin_[z + 1]; ++k) {
-      const Index n = zone_nbr_[k];
-      if (!std::isfinite(q[n])) {
+      const double qn = q[zone_nbr_[k]];
+      if (!std::isfinite(qn)) {
         finite = false;
         break;
       }
-      const double dq = q[n] - q[z];
-      bx += (cx_[n] - cx_[z]) * dq;
-      by += (cy_[n] - cy_[z]) * dq;
-      qmin = std::min(qmin, q[n]);
-      qmax = std::max(qmax, q[n]);
+      const double dq = qn - qz;
+      bx += ncx_[k] * dq;
+      by += ncy_[k] * dq;
+      qmin = std::min(qmin, qn);
+      qmax = std::max(qmax, qn);
     }
     if (!finite) continue;
     if (lo) lo[z] = qmin, hi[z] = qmax;
     const double* pinv = &zlsq_[3 * static_cast<std::size_t>(z)];
     double ax = pinv[0] * bx + pinv[1] * by, ay = pinv[1] * bx + pinv[2] * by;
+    const Index b = m.zone_corner_begin[z], e = m.zone_corner_begin[z + 1];
     if (limiter && (ax != 0 || ay != 0)) {
+      // A side that is not shared has a zero midpoint offset: a zero change, factor 1.
       double phi = 1.0;
-      const Index b = m.zone_corner_begin[z], nv = m.zone_corner_begin[z + 1] - b;
-      for (Index k = 0; k < nv; ++k) {
-        const Index p = m.corner_point[b + k], p1 = m.corner_point[b + (k + 1) % nv];
-        if (!boundary_point_[p])
-          phi = std::min(phi, bj_factor(q[z], ax * (xo_[p] - cx_[z]) + ay * (yo_[p] - cy_[z]), qmin, qmax));
-        if (side_zone_[b + k] >= 0) {
-          const double mx = 0.5 * (xo_[p] + xo_[p1]) - cx_[z], my = 0.5 * (yo_[p] + yo_[p1]) - cy_[z];
-          phi = std::min(phi, bj_factor(q[z], ax * mx + ay * my, qmin, qmax));
-        }
+      for (Index c = b; c < e; ++c) {
+        if (limit_vertex_[c]) phi = std::min(phi, bj_factor(qz, ax * lvx_[c] + ay * lvy_[c], qmin, qmax));
+        phi = std::min(phi, bj_factor(qz, ax * lmx_[c] + ay * lmy_[c], qmin, qmax));
       }
       phi = std::max(phi, 0.0);
       ax *= phi, ay *= phi;
@@ -296,10 +299,8 @@ void Remapper::zone_gradients(const double* q, bool limiter, double* gx, double*
     if (lo && (ax != 0 || ay != 0)) {
       // The bounds of a flux's mean value: the neighbourhood's, widened by the (limited)
       // reconstruction at the zone's vertices (which the limiter leaves free on the boundary).
-      const Index b = m.zone_corner_begin[z], nv = m.zone_corner_begin[z + 1] - b;
-      for (Index k = 0; k < nv; ++k) {
-        const Index p = m.corner_point[b + k];
-        const double v = q[z] + ax * (xo_[p] - cx_[z]) + ay * (yo_[p] - cy_[z]);
+      for (Index c = b; c < e; ++c) {
+        const double v = qz + ax * lvx_[c] + ay * lvy_[c];
         lo[z] = std::min(lo[z], v), hi[z] = std::max(hi[z], v);
       }
     }
@@ -317,7 +318,7 @@ void Remapper::point_gradients(const double* qa, const double* qb, bool limiter,
     double bx[2] = {0, 0}, by[2] = {0, 0}, qmin[2] = {qa[p], qb[p]}, qmax[2] = {qa[p], qb[p]};
     for (Index k = point_nbr_begin_[p]; k < point_nbr_begin_[p + 1]; ++k) {
       const Index n = point_nbr_[k];
-      const double dx = xo_[n] - xo_[p], dy = yo_[n] - yo_[p];
+      const double dx = pdx_[k], dy = pdy_[k];
       for (int i = 0; i < 2; ++i) {
         const double dq = q[i][n] - q[i][p];
         bx[i] += dx * dq;
@@ -335,8 +336,7 @@ void Remapper::point_gradients(const double* qa, const double* qb, bool limiter,
     }
     if (limit[0] || limit[1]) {
       for (Index k = point_nbr_begin_[p]; k < point_nbr_begin_[p + 1]; ++k) {
-        const Index n = point_nbr_[k];
-        const double mx = 0.5 * (xo_[n] - xo_[p]), my = 0.5 * (yo_[n] - yo_[p]);
+        const double mx = 0.5 * pdx_[k], my = 0.5 * pdy_[k];
         for (int i = 0; i < 2; ++i)
           if (limit[i]) phi[i] = std::min(phi[i], bj_factor(q[i][p], ax[i] * mx + ay[i] * my, qmin[i], qmax[i]));
       }
@@ -365,7 +365,6 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
   const Mesh& m = mesh_;
   const Index nz = m.num_zones(), np = m.num_points(), nc = m.num_corners();
   const std::size_t nf = f.specific.size();
-  xo_ = xo, yo_ = yo;  // the old positions, for the gradient passes
 
   // Old geometry: areas, centroids (the reconstruction's centres), densities, and the old
   // corners (x_k, mid(k, k+1), centre, mid(k-1, k)): their own densities m_c / A_c feed the
@@ -399,10 +398,14 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
     gox /= n, goy /= n;
     gox_[z] = gox, goy_[z] = goy;
     for (Index k = 0; k < n; ++k) {
-      const Index p = m.corner_point[b + k], pn = m.corner_point[b + (k + 1) % n],
-                  pp = m.corner_point[b + (k + n - 1) % n];
+      const Index p = m.corner_point[b + k], pn = m.corner_point[b + (k + 1 == n ? 0 : k + 1)],
+                  pp = m.corner_point[b + (k == 0 ? n - 1 : k - 1)];
       const double qx[4] = {xo[p], 0.5 * (xo[p] + xo[pn]), gox, 0.5 * (xo[p] + xo[pp])};
       const double qy[4] = {yo[p], 0.5 * (yo[p] + yo[pn]), goy, 0.5 * (yo[p] + yo[pp])};
+      // The limiter's offsets from the centroid: the point, and the side's midpoint if shared.
+      const bool shared = side_zone_[b + k] >= 0;
+      lvx_[b + k] = qx[0] - cx_[z], lvy_[b + k] = qy[0] - cy_[z];
+      lmx_[b + k] = shared ? qx[1] - cx_[z] : 0.0, lmy_[b + k] = shared ? qy[1] - cy_[z] : 0.0;
       const Swept a = swept_quad<Rz>(qx[0], qy[0], qx[1], qy[1], qx[2], qy[2], qx[3], qy[3], 0.0, 0.0);
       crho_[b + k] = a.area > 0 ? f.corner_mass[b + k] / a.area : rho_[z];
       ccx_[b + k] = a.area > 0 ? a.mx / a.area : gox;
@@ -415,6 +418,7 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
     double a = 0, b = 0, c = 0;
     for (Index k = zone_nbr_begin_[z]; k < zone_nbr_begin_[z + 1]; ++k) {
       const double dx = cx_[zone_nbr_[k]] - cx_[z], dy = cy_[zone_nbr_[k]] - cy_[z];
+      ncx_[k] = dx, ncy_[k] = dy;  // for every field's gradient
       a += dx * dx, b += dx * dy, c += dy * dy;
     }
     pseudo_inverse(a, b, c, &zlsq_[3 * static_cast<std::size_t>(z)]);
@@ -424,6 +428,7 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
     double a = 0, b = 0, c = 0;
     for (Index k = point_nbr_begin_[p]; k < point_nbr_begin_[p + 1]; ++k) {
       const double dx = xo[point_nbr_[k]] - xo[p], dy = yo[point_nbr_[k]] - yo[p];
+      pdx_[k] = dx, pdy_[k] = dy;  // for the velocity gradients
       a += dx * dx, b += dx * dy, c += dy * dy;
     }
     pseudo_inverse(a, b, c, &plsq_[3 * static_cast<std::size_t>(p)]);
@@ -447,7 +452,7 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
       continue;
     }
     for (Index k = 0; k < n; ++k) {
-      const Index c = b + k, cn = b + (k + 1) % n, cp = b + (k + n - 1) % n;
+      const Index c = b + k, cn = b + (k + 1 == n ? 0 : k + 1), cp = b + (k == 0 ? n - 1 : k - 1);
       const double r = crho_[c];
       const Index p = m.corner_point[c], pn = m.corner_point[cn], pp = m.corner_point[cp];
       const double qx[4] = {xo[p], 0.5 * (xo[p] + xo[pn]), gox, 0.5 * (xo[p] + xo[pp])};

@@ -14,6 +14,8 @@
 // over a signed polygon are exact (area and first moments), which makes linear fields exact.
 #include "ale/remap.hpp"
 
+#include <omp.h>
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -233,6 +235,9 @@ Remapper::Remapper(const Mesh& mesh, std::span<const int> zone_material, bool rz
   flux_mass_.assign(3 * static_cast<std::size_t>(nc), 0.0);
   flux_active_.assign(3 * static_cast<std::size_t>(nc), 0);
   for (auto* v : {&seg_px_, &seg_py_, &seg_ke_}) v->assign(nc, 0.0);
+  zone_dm_.assign(nz, 0.0);
+  corner_dm_.assign(nc, 0.0);
+  zone_hit_.assign(nz, 0);
 }
 
 int Remapper::substeps(const double* xo, const double* yo, const double* xn, const double* yn, double fraction) const {
@@ -359,6 +364,85 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
     remap_impl<false>(xo, yo, xn, yn, f, limiter);
 }
 
+// The sums of the slots per zone, corner and point, in the serial sweep's order (bitwise the
+// same on any number of threads), and the new zone and corner values; a list entry's low bit
+// says whether the flux is added or taken.
+void Remapper::gather_fluxes(RemapFields& f) {
+  const Mesh& m = mesh_;
+  const Index nz = m.num_zones(), np = m.num_points(), nc = m.num_corners();
+  const std::size_t nf = f.specific.size(), nc2 = 2 * static_cast<std::size_t>(nc);
+  const auto sum = [](const Index* begin, const Index* end, const double* value) {
+    double s = 0;
+    for (const Index* e = begin; e != end; ++e) {
+      const double v = value[*e >> 1];
+      if (*e & 1)
+        s -= v;
+      else
+        s += v;
+    }
+    return s;
+  };
+  Index failed_zone = std::numeric_limits<Index>::max();
+#pragma omp parallel for schedule(static) reduction(min : failed_zone) if (nz > kParallelMin)
+  for (Index z = 0; z < nz; ++z) {
+    const Index* lb = zone_list_.data() + zone_list_begin_[z];
+    const Index* le = zone_list_.data() + zone_list_begin_[z + 1];
+    // New zone values: mass plus fluxes, specific quantities from their mass-weighted sums.
+    double dm = 0;
+    char touched = 0;
+    for (const Index* e = lb; e != le; ++e) {
+      const Index s = *e >> 1;
+      touched |= flux_active_[s];
+      if (*e & 1)
+        dm -= flux_mass_[s];
+      else
+        dm += flux_mass_[s];
+    }
+    if (!touched) continue;
+    const double m0 = f.zone_mass[z], m1 = m0 + dm;
+    if (!(m1 > 0)) {
+      failed_zone = std::min(failed_zone, z);
+      continue;
+    }
+    for (std::size_t i = 0; i < nf; ++i) {
+      double& q = f.specific[i][z];
+      if (std::isfinite(q)) q = (m0 * q + sum(lb, le, flux_q_.data() + i * nc2)) / m1;
+    }
+    f.zone_mass[z] = m1;
+  }
+  if (failed_zone != std::numeric_limits<Index>::max()) {
+    const Index* lb = zone_list_.data() + zone_list_begin_[failed_zone];
+    const Index* le = zone_list_.data() + zone_list_begin_[failed_zone + 1];
+    fail_mass(m, "zone", failed_zone, f.zone_mass[failed_zone] + sum(lb, le, flux_mass_.data()));
+  }
+#pragma omp parallel for schedule(static) if (nc > kParallelMin)
+  for (Index c = 0; c < nc; ++c) {
+    const double dm = sum(corner_list_.data() + corner_list_begin_[c], corner_list_.data() + corner_list_begin_[c + 1],
+                          flux_mass_.data());
+    if (dm != 0) f.corner_mass[c] += dm;
+  }
+#pragma omp parallel for schedule(static) if (np > kParallelMin)
+  for (Index p = 0; p < np; ++p) {
+    const Index* lb = point_list_.data() + point_list_begin_[p];
+    const Index* le = point_list_.data() + point_list_begin_[p + 1];
+    // One pass, four sums, each in the serial order.
+    const double* mass = flux_mass_.data() + nc2;
+    const char* flag = flux_active_.data() + nc2;
+    double sm = 0, sx = 0, sy = 0, sk = 0;
+    char a = 0;
+    for (const Index* e = lb; e != le; ++e) {
+      const Index s = *e >> 1;
+      a |= flag[s];
+      if (*e & 1)
+        sm -= mass[s], sx -= seg_px_[s], sy -= seg_py_[s], sk -= seg_ke_[s];
+      else
+        sm += mass[s], sx += seg_px_[s], sy += seg_py_[s], sk += seg_ke_[s];
+    }
+    point_touched_[p] = a;
+    dm_point_[p] = sm, dpx_[p] = sx, dpy_[p] = sy, dke_[p] = sk;
+  }
+}
+
 template <bool Rz>
 void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, const double* yn, RemapFields& f,
                           bool limiter) {
@@ -468,8 +552,20 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
   }
 
   // The fluxes, face by face (each face once, from the zone that owns it), into their slots.
+  // On one thread (or below the parallel loops' size) each flux goes straight into the sums
+  // of its cells instead, in the order in which the gathers below would add it: the same
+  // bits without the slots' second pass (docs/ale.md, "Remap cost").
   const std::size_t nc2 = 2 * static_cast<std::size_t>(nc);
-#pragma omp parallel for schedule(static) if (nz > kParallelMin)
+  const bool direct = nz <= kParallelMin || omp_get_max_threads() == 1;
+  if (direct) {
+    std::fill(zone_dm_.begin(), zone_dm_.end(), 0.0);
+    std::fill(corner_dm_.begin(), corner_dm_.end(), 0.0);
+    zone_dq_.assign(nf * nz, 0.0);  // allocates at the first remap only
+    std::fill(zone_hit_.begin(), zone_hit_.end(), 0);
+    for (auto* v : {&dm_point_, &dpx_, &dpy_, &dke_}) std::fill(v->begin(), v->end(), 0.0);
+    std::fill(point_touched_.begin(), point_touched_.end(), 0);
+  }
+#pragma omp parallel for schedule(static) if (nz > kParallelMin && !direct)
   for (Index z = 0; z < nz; ++z) {
     const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
     double gnx = 0, gny = 0;
@@ -502,6 +598,7 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
           const double bx1 = h == 0 ? mnx : xn[pb], by1 = h == 0 ? mny : yn[pb];
           const Swept s0 = swept_quad<Rz>(ax0, ay0, ax1, ay1, bx1, by1, bx0, by0, 0.0, 0.0);
           if (s0.area == 0 && s0.mx == 0 && s0.my == 0) {
+            if (direct) continue;  // adds nothing
             flux_mass_[slot] = 0, flux_active_[slot] = 0;
             for (std::size_t i = 0; i < nf; ++i) flux_q_[i * nc2 + slot] = 0;
             continue;
@@ -519,7 +616,13 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
             const double lo = s0.area * rlo_[d], hi = s0.area * rhi_[d];
             flux = std::clamp(flux, std::min(lo, hi), std::max(lo, hi));
           }
-          flux_mass_[slot] = flux, flux_active_[slot] = 1;
+          if (direct) {
+            zone_dm_[z] += flux, zone_dm_[nb] -= flux;
+            corner_dm_[left] += flux, corner_dm_[right] -= flux;
+            zone_hit_[z] = zone_hit_[nb] = 1;
+          } else {
+            flux_mass_[slot] = flux, flux_active_[slot] = 1;
+          }
           for (std::size_t i = 0; i < nf; ++i) {
             const double qd = f.specific[i][d];
             double fq = 0;
@@ -536,7 +639,10 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
                 fq = std::clamp(fq, std::min(lo, hi), std::max(lo, hi));
               }
             }
-            flux_q_[i * nc2 + slot] = fq;
+            if (direct)
+              zone_dq_[i * nz + z] += fq, zone_dq_[i * nz + nb] -= fq;
+            else
+              flux_q_[i * nc2 + slot] = fq;
           }
         }
       }
@@ -544,7 +650,7 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
       const std::size_t slot = nc2 + c;
       const Swept s = swept_quad<Rz>(mox, moy, mnx, mny, gnx, gny, gox, goy, 0.0, 0.0);
       if ((s.area == 0 && s.mx == 0 && s.my == 0) || (Rz && !segment_point_[c])) {
-        flux_mass_[slot] = seg_px_[c] = seg_py_[c] = seg_ke_[c] = 0, flux_active_[slot] = 0;
+        if (!direct) flux_mass_[slot] = seg_px_[c] = seg_py_[c] = seg_ke_[c] = 0, flux_active_[slot] = 0;
         continue;
       }
       const Index kd = s.area > 0 ? kp : k;  // the donor corner
@@ -554,84 +660,42 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
       const double mx = s.mx - xo[pd] * s.area, my = s.my - yo[pd] * s.area;
       const double u = f.vx[pd], w = f.vy[pd];
       const double du = vgx_[pd] * mx + vgy_[pd] * my, dw = wgx_[pd] * mx + wgy_[pd] * my;
-      flux_mass_[slot] = flux, flux_active_[slot] = 1;
-      seg_px_[c] = u * flux + corner_rho[kd] * du;
-      seg_py_[c] = w * flux + corner_rho[kd] * dw;
-      seg_ke_[c] = 0.5 * (u * u + w * w) * flux + corner_rho[kd] * (u * du + w * dw);
+      const double px = u * flux + corner_rho[kd] * du;
+      const double py = w * flux + corner_rho[kd] * dw;
+      const double ke = 0.5 * (u * u + w * w) * flux + corner_rho[kd] * (u * du + w * dw);
+      if (direct) {
+        corner_dm_[c] += flux, corner_dm_[b + kp] -= flux;
+        dm_point_[pa] += flux, dpx_[pa] += px, dpy_[pa] += py, dke_[pa] += ke, point_touched_[pa] = 1;
+        dm_point_[pb] -= flux, dpx_[pb] -= px, dpy_[pb] -= py, dke_[pb] -= ke, point_touched_[pb] = 1;
+      } else {
+        flux_mass_[slot] = flux, flux_active_[slot] = 1;
+        seg_px_[c] = px, seg_py_[c] = py, seg_ke_[c] = ke;
+      }
     }
   }
 
-  // The sums per zone, corner and point, in the serial sweep's order (bitwise the same on
-  // any number of threads); a slot's sign bit says whether the flux is added or taken.
-  const auto sum = [](const Index* begin, const Index* end, const double* value) {
-    double s = 0;
-    for (const Index* e = begin; e != end; ++e) {
-      const double v = value[*e >> 1];
-      if (*e & 1)
-        s -= v;
-      else
-        s += v;
-    }
-    return s;
-  };
   Index failed_zone = std::numeric_limits<Index>::max();
-#pragma omp parallel for schedule(static) reduction(min : failed_zone) if (nz > kParallelMin)
-  for (Index z = 0; z < nz; ++z) {
-    const Index* lb = zone_list_.data() + zone_list_begin_[z];
-    const Index* le = zone_list_.data() + zone_list_begin_[z + 1];
-    // New zone values: mass plus fluxes, specific quantities from their mass-weighted sums.
-    double dm = 0;
-    char touched = 0;
-    for (const Index* e = lb; e != le; ++e) {
-      const Index s = *e >> 1;
-      touched |= flux_active_[s];
-      if (*e & 1)
-        dm -= flux_mass_[s];
-      else
-        dm += flux_mass_[s];
+  if (direct) {
+    // The sums are there: the new zone and corner values.
+    for (Index z = 0; z < nz; ++z) {
+      if (!zone_hit_[z]) continue;
+      const double m0 = f.zone_mass[z], m1 = m0 + zone_dm_[z];
+      if (!(m1 > 0)) {
+        failed_zone = std::min(failed_zone, z);
+        continue;
+      }
+      for (std::size_t i = 0; i < nf; ++i) {
+        double& q = f.specific[i][z];
+        if (std::isfinite(q)) q = (m0 * q + zone_dq_[i * nz + z]) / m1;
+      }
+      f.zone_mass[z] = m1;
     }
-    if (!touched) continue;
-    const double m0 = f.zone_mass[z], m1 = m0 + dm;
-    if (!(m1 > 0)) {
-      failed_zone = std::min(failed_zone, z);
-      continue;
-    }
-    for (std::size_t i = 0; i < nf; ++i) {
-      double& q = f.specific[i][z];
-      if (std::isfinite(q)) q = (m0 * q + sum(lb, le, flux_q_.data() + i * nc2)) / m1;
-    }
-    f.zone_mass[z] = m1;
-  }
-  if (failed_zone != std::numeric_limits<Index>::max()) {
-    const Index* lb = zone_list_.data() + zone_list_begin_[failed_zone];
-    const Index* le = zone_list_.data() + zone_list_begin_[failed_zone + 1];
-    fail_mass(m, "zone", failed_zone, f.zone_mass[failed_zone] + sum(lb, le, flux_mass_.data()));
-  }
-#pragma omp parallel for schedule(static) if (nc > kParallelMin)
-  for (Index c = 0; c < nc; ++c) {
-    const double dm = sum(corner_list_.data() + corner_list_begin_[c], corner_list_.data() + corner_list_begin_[c + 1],
-                          flux_mass_.data());
-    if (dm != 0) f.corner_mass[c] += dm;
-  }
-#pragma omp parallel for schedule(static) if (np > kParallelMin)
-  for (Index p = 0; p < np; ++p) {
-    const Index* lb = point_list_.data() + point_list_begin_[p];
-    const Index* le = point_list_.data() + point_list_begin_[p + 1];
-    // One pass, four sums, each in the serial order.
-    const double* mass = flux_mass_.data() + nc2;
-    const char* flag = flux_active_.data() + nc2;
-    double sm = 0, sx = 0, sy = 0, sk = 0;
-    char a = 0;
-    for (const Index* e = lb; e != le; ++e) {
-      const Index s = *e >> 1;
-      a |= flag[s];
-      if (*e & 1)
-        sm -= mass[s], sx -= seg_px_[s], sy -= seg_py_[s], sk -= seg_ke_[s];
-      else
-        sm += mass[s], sx += seg_px_[s], sy += seg_py_[s], sk += seg_ke_[s];
-    }
-    point_touched_[p] = a;
-    dm_point_[p] = sm, dpx_[p] = sx, dpy_[p] = sy, dke_[p] = sk;
+    if (failed_zone != std::numeric_limits<Index>::max())
+      fail_mass(m, "zone", failed_zone, f.zone_mass[failed_zone] + zone_dm_[failed_zone]);
+    for (Index c = 0; c < nc; ++c)
+      if (corner_dm_[c] != 0) f.corner_mass[c] += corner_dm_[c];
+  } else {
+    gather_fluxes(f);
   }
   // Repair: a zone whose corner kept less than a hundredth of its share (subcell densities
   // can drift apart where the mesh and the flow shear; a swept region then takes more than

@@ -55,6 +55,7 @@ class Remapper {
  private:
   template <bool Rz>
   void remap_impl(const double* xo, const double* yo, const double* xn, const double* yn, RemapFields& f, bool limiter);
+  void gather_fluxes(RemapFields& f);
   void zone_gradients(const double* q, bool limiter, double* gx, double* gy, double* lo, double* hi);
   void point_gradients(const double* qa, const double* qb, bool limiter, double* gax, double* gay, double* gbx,
                        double* gby);
@@ -91,6 +92,9 @@ class Remapper {
   std::vector<double> flux_mass_, flux_q_, seg_px_, seg_py_, seg_ke_;
   std::vector<char> flux_active_;
   std::vector<Index> zone_list_begin_, zone_list_, corner_list_begin_, corner_list_, point_list_begin_, point_list_;
+  // On one thread the fluxes go straight into these sums (and dm_point_, ...) instead.
+  std::vector<double> zone_dm_, corner_dm_, zone_dq_;
+  std::vector<char> zone_hit_;
   long repaired_ = 0;
 };
 

@@ -42,8 +42,8 @@ struct WallClearance {
   std::vector<float> budget;  // per point, rounded down
   bool valid = false;
   bool charged = false;  // the last remap subtracted its moves from the valid budgets
-  long cycle = 0;    // the cycle at which every budget was last computed afresh
-  double slack = 0;  // subtracted from every distance: the walls' round-off tolerance and more
+  long cycle = 0;        // the cycle at which every budget was last computed afresh
+  double slack = 0;      // subtracted from every distance: the walls' round-off tolerance and more
 };
 
 }  // namespace stagger

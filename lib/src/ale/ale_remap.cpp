@@ -326,6 +326,20 @@ bool AleRemap::remap(RemapState&) {
     s_.ale_fixup = fixup_before;
     throw;
   }
+  // The wall check's budgets (docs/algorithm.md §10) stay lower bounds of each point's
+  // clearance if the move is subtracted from them, rounded down as a step's is: the next step
+  // then tests only the points near a wall instead of all of them (docs/ale.md, "Remap cost").
+  WallClearance& walls = s_.wall_clearance;
+  if (walls.valid && walls.budget.size() == static_cast<std::size_t>(np)) {
+    float* budget = walls.budget.data();
+    const double *x = s_.x.data(), *y = s_.y.data(), *xn = xn_.data(), *yn = yn_.data();
+#pragma omp parallel for schedule(static) if (np > kParallelMin)
+    for (Index p = 0; p < np; ++p) {
+      const double left = budget[p] - (std::abs(xn[p] - x[p]) + std::abs(yn[p] - y[p]));
+      budget[p] = static_cast<float>(left - std::abs(left) * 0x1p-22);
+    }
+    walls.charged = true;
+  }
   std::copy(xn_.begin(), xn_.end(), s_.x.begin());
   std::copy(yn_.begin(), yn_.end(), s_.y.begin());
   // The remapped deviatoric stress may lie outside the yield surface (a mix of stresses

@@ -14,6 +14,8 @@
 // over a signed polygon are exact (area and first moments), which makes linear fields exact.
 #include "ale/remap.hpp"
 
+#include <omp.h>
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -177,7 +179,13 @@ Remapper::Remapper(const Mesh& mesh, std::span<const int> zone_material, bool rz
   zlsq_.assign(3 * static_cast<std::size_t>(nz), 0.0);
   plsq_.assign(3 * static_cast<std::size_t>(np), 0.0);
   for (auto* v : {&vgx_, &vgy_, &wgx_, &wgy_, &dm_point_, &dpx_, &dpy_, &dke_}) v->assign(np, 0.0);
-  for (auto* v : {&crho_, &ccx_, &ccy_, &cgx_, &cgy_}) v->assign(nc, 0.0);
+  for (auto* v : {&crho_, &ccx_, &ccy_, &cgx_, &cgy_, &lvx_, &lvy_, &lmx_, &lmy_}) v->assign(nc, 0.0);
+  limit_vertex_.assign(nc, 0);
+  for (Index c = 0; c < nc; ++c) limit_vertex_[c] = !boundary_point_[mesh.corner_point[c]];
+  ncx_.assign(zone_nbr_.size(), 0.0);
+  ncy_.assign(zone_nbr_.size(), 0.0);
+  pdx_.assign(point_nbr_.size(), 0.0);
+  pdy_.assign(point_nbr_.size(), 0.0);
   gox_.assign(nz, 0.0);
   goy_.assign(nz, 0.0);
   point_touched_.assign(np, 0);
@@ -227,6 +235,9 @@ Remapper::Remapper(const Mesh& mesh, std::span<const int> zone_material, bool rz
   flux_mass_.assign(3 * static_cast<std::size_t>(nc), 0.0);
   flux_active_.assign(3 * static_cast<std::size_t>(nc), 0);
   for (auto* v : {&seg_px_, &seg_py_, &seg_ke_}) v->assign(nc, 0.0);
+  zone_dm_.assign(nz, 0.0);
+  corner_dm_.assign(nc, 0.0);
+  zone_hit_.assign(nz, 0);
 }
 
 int Remapper::substeps(const double* xo, const double* yo, const double* xn, const double* yn, double fraction) const {
@@ -259,35 +270,32 @@ void Remapper::zone_gradients(const double* q, bool limiter, double* gx, double*
     gx[z] = gy[z] = 0;
     if (lo) lo[z] = hi[z] = q[z];
     if (!std::isfinite(q[z])) continue;
-    double bx = 0, by = 0, qmin = q[z], qmax = q[z];
+    const double qz = q[z];
+    double bx = 0, by = 0, qmin = qz, qmax = qz;
     bool finite = true;
     for (Index k = zone_nbr_begin_[z]; k < zone_nbr_begin_[z + 1]; ++k) {
-      const Index n = zone_nbr_[k];
-      if (!std::isfinite(q[n])) {
+      const double qn = q[zone_nbr_[k]];
+      if (!std::isfinite(qn)) {
         finite = false;
         break;
       }
-      const double dq = q[n] - q[z];
-      bx += (cx_[n] - cx_[z]) * dq;
-      by += (cy_[n] - cy_[z]) * dq;
-      qmin = std::min(qmin, q[n]);
-      qmax = std::max(qmax, q[n]);
+      const double dq = qn - qz;
+      bx += ncx_[k] * dq;
+      by += ncy_[k] * dq;
+      qmin = std::min(qmin, qn);
+      qmax = std::max(qmax, qn);
     }
     if (!finite) continue;
     if (lo) lo[z] = qmin, hi[z] = qmax;
     const double* pinv = &zlsq_[3 * static_cast<std::size_t>(z)];
     double ax = pinv[0] * bx + pinv[1] * by, ay = pinv[1] * bx + pinv[2] * by;
+    const Index b = m.zone_corner_begin[z], e = m.zone_corner_begin[z + 1];
     if (limiter && (ax != 0 || ay != 0)) {
+      // A side that is not shared has a zero midpoint offset: a zero change, factor 1.
       double phi = 1.0;
-      const Index b = m.zone_corner_begin[z], nv = m.zone_corner_begin[z + 1] - b;
-      for (Index k = 0; k < nv; ++k) {
-        const Index p = m.corner_point[b + k], p1 = m.corner_point[b + (k + 1) % nv];
-        if (!boundary_point_[p])
-          phi = std::min(phi, bj_factor(q[z], ax * (xo_[p] - cx_[z]) + ay * (yo_[p] - cy_[z]), qmin, qmax));
-        if (side_zone_[b + k] >= 0) {
-          const double mx = 0.5 * (xo_[p] + xo_[p1]) - cx_[z], my = 0.5 * (yo_[p] + yo_[p1]) - cy_[z];
-          phi = std::min(phi, bj_factor(q[z], ax * mx + ay * my, qmin, qmax));
-        }
+      for (Index c = b; c < e; ++c) {
+        if (limit_vertex_[c]) phi = std::min(phi, bj_factor(qz, ax * lvx_[c] + ay * lvy_[c], qmin, qmax));
+        phi = std::min(phi, bj_factor(qz, ax * lmx_[c] + ay * lmy_[c], qmin, qmax));
       }
       phi = std::max(phi, 0.0);
       ax *= phi, ay *= phi;
@@ -296,10 +304,8 @@ void Remapper::zone_gradients(const double* q, bool limiter, double* gx, double*
     if (lo && (ax != 0 || ay != 0)) {
       // The bounds of a flux's mean value: the neighbourhood's, widened by the (limited)
       // reconstruction at the zone's vertices (which the limiter leaves free on the boundary).
-      const Index b = m.zone_corner_begin[z], nv = m.zone_corner_begin[z + 1] - b;
-      for (Index k = 0; k < nv; ++k) {
-        const Index p = m.corner_point[b + k];
-        const double v = q[z] + ax * (xo_[p] - cx_[z]) + ay * (yo_[p] - cy_[z]);
+      for (Index c = b; c < e; ++c) {
+        const double v = qz + ax * lvx_[c] + ay * lvy_[c];
         lo[z] = std::min(lo[z], v), hi[z] = std::max(hi[z], v);
       }
     }
@@ -317,7 +323,7 @@ void Remapper::point_gradients(const double* qa, const double* qb, bool limiter,
     double bx[2] = {0, 0}, by[2] = {0, 0}, qmin[2] = {qa[p], qb[p]}, qmax[2] = {qa[p], qb[p]};
     for (Index k = point_nbr_begin_[p]; k < point_nbr_begin_[p + 1]; ++k) {
       const Index n = point_nbr_[k];
-      const double dx = xo_[n] - xo_[p], dy = yo_[n] - yo_[p];
+      const double dx = pdx_[k], dy = pdy_[k];
       for (int i = 0; i < 2; ++i) {
         const double dq = q[i][n] - q[i][p];
         bx[i] += dx * dq;
@@ -335,8 +341,7 @@ void Remapper::point_gradients(const double* qa, const double* qb, bool limiter,
     }
     if (limit[0] || limit[1]) {
       for (Index k = point_nbr_begin_[p]; k < point_nbr_begin_[p + 1]; ++k) {
-        const Index n = point_nbr_[k];
-        const double mx = 0.5 * (xo_[n] - xo_[p]), my = 0.5 * (yo_[n] - yo_[p]);
+        const double mx = 0.5 * pdx_[k], my = 0.5 * pdy_[k];
         for (int i = 0; i < 2; ++i)
           if (limit[i]) phi[i] = std::min(phi[i], bj_factor(q[i][p], ax[i] * mx + ay[i] * my, qmin[i], qmax[i]));
       }
@@ -359,205 +364,13 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
     remap_impl<false>(xo, yo, xn, yn, f, limiter);
 }
 
-template <bool Rz>
-void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, const double* yn, RemapFields& f,
-                          bool limiter) {
+// The sums of the slots per zone, corner and point, in the serial sweep's order (bitwise the
+// same on any number of threads), and the new zone and corner values; a list entry's low bit
+// says whether the flux is added or taken.
+void Remapper::gather_fluxes(RemapFields& f) {
   const Mesh& m = mesh_;
   const Index nz = m.num_zones(), np = m.num_points(), nc = m.num_corners();
-  const std::size_t nf = f.specific.size();
-  xo_ = xo, yo_ = yo;  // the old positions, for the gradient passes
-
-  // Old geometry: areas, centroids (the reconstruction's centres), densities, and the old
-  // corners (x_k, mid(k, k+1), centre, mid(k-1, k)): their own densities m_c / A_c feed the
-  // centre-segment fluxes, so that a corner never gives more than it holds.
-#pragma omp parallel for schedule(static) if (nz > kParallelMin)
-  for (Index z = 0; z < nz; ++z) {
-    const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
-    const double x0 = xo[m.corner_point[b]], y0 = yo[m.corner_point[b]];
-    double a2 = 0, sx = 0, sy = 0;
-    for (Index k = 1; k + 1 < n; ++k) {
-      const Index p = m.corner_point[b + k], q = m.corner_point[b + k + 1];
-      const double ux = xo[p] - x0, uy = yo[p] - y0, wx = xo[q] - x0, wy = yo[q] - y0;
-      const double cr = ux * wy - wx * uy;
-      a2 += cr, sx += (ux + wx) * cr, sy += (uy + wy) * cr;
-    }
-    area_[z] = 0.5 * a2;
-    cx_[z] = x0 + sx / (3 * a2);
-    cy_[z] = y0 + sy / (3 * a2);
-    if constexpr (Rz) {  // the volume and its centroid (int x r dA / V, int y r dA / V)
-      double v = 0, mx = 0, my = 0;
-      for (Index k = 1; k + 1 < n; ++k) {
-        const Index p = m.corner_point[b + k], q = m.corner_point[b + k + 1];
-        const Swept t = swept_quad<true>(x0, y0, xo[p], yo[p], xo[q], yo[q], xo[q], yo[q], 0.0, 0.0);
-        v += t.area, mx += t.mx, my += t.my;
-      }
-      area_[z] = v, cx_[z] = mx / v, cy_[z] = my / v;
-    }
-    rho_[z] = f.zone_mass[z] / area_[z];
-    double gox = 0, goy = 0;
-    for (Index k = 0; k < n; ++k) gox += xo[m.corner_point[b + k]], goy += yo[m.corner_point[b + k]];
-    gox /= n, goy /= n;
-    gox_[z] = gox, goy_[z] = goy;
-    for (Index k = 0; k < n; ++k) {
-      const Index p = m.corner_point[b + k], pn = m.corner_point[b + (k + 1) % n],
-                  pp = m.corner_point[b + (k + n - 1) % n];
-      const double qx[4] = {xo[p], 0.5 * (xo[p] + xo[pn]), gox, 0.5 * (xo[p] + xo[pp])};
-      const double qy[4] = {yo[p], 0.5 * (yo[p] + yo[pn]), goy, 0.5 * (yo[p] + yo[pp])};
-      const Swept a = swept_quad<Rz>(qx[0], qy[0], qx[1], qy[1], qx[2], qy[2], qx[3], qy[3], 0.0, 0.0);
-      crho_[b + k] = a.area > 0 ? f.corner_mass[b + k] / a.area : rho_[z];
-      ccx_[b + k] = a.area > 0 ? a.mx / a.area : gox;
-      ccy_[b + k] = a.area > 0 ? a.my / a.area : goy;
-    }
-  }
-  // Least-squares matrices.
-#pragma omp parallel for schedule(static) if (nz > kParallelMin)
-  for (Index z = 0; z < nz; ++z) {
-    double a = 0, b = 0, c = 0;
-    for (Index k = zone_nbr_begin_[z]; k < zone_nbr_begin_[z + 1]; ++k) {
-      const double dx = cx_[zone_nbr_[k]] - cx_[z], dy = cy_[zone_nbr_[k]] - cy_[z];
-      a += dx * dx, b += dx * dy, c += dy * dy;
-    }
-    pseudo_inverse(a, b, c, &zlsq_[3 * static_cast<std::size_t>(z)]);
-  }
-#pragma omp parallel for schedule(static) if (np > kParallelMin)
-  for (Index p = 0; p < np; ++p) {
-    double a = 0, b = 0, c = 0;
-    for (Index k = point_nbr_begin_[p]; k < point_nbr_begin_[p + 1]; ++k) {
-      const double dx = xo[point_nbr_[k]] - xo[p], dy = yo[point_nbr_[k]] - yo[p];
-      a += dx * dx, b += dx * dy, c += dy * dy;
-    }
-    pseudo_inverse(a, b, c, &plsq_[3 * static_cast<std::size_t>(p)]);
-  }
-  zone_gradients(rho_.data(), limiter, grx_.data(), gry_.data(), rlo_.data(), rhi_.data());
-  qgx_.resize(nf * nz), qgy_.resize(nf * nz), qmin_.resize(nf * nz), qmax_.resize(nf * nz);
-  flux_q_.resize(nf * 2 * static_cast<std::size_t>(nc));
-  for (std::size_t i = 0; i < nf; ++i)
-    zone_gradients(f.specific[i], limiter, qgx_.data() + i * nz, qgy_.data() + i * nz, qmin_.data() + i * nz,
-                   qmax_.data() + i * nz);
-  point_gradients(f.vx, f.vy, limiter, vgx_.data(), vgy_.data(), wgx_.data(), wgy_.data());
-
-  // The corner gradient: the zone's limited one, scaled where needed so that the corner's
-  // reconstruction stays non-negative at its vertices.
-#pragma omp parallel for schedule(static) if (nz > kParallelMin)
-  for (Index z = 0; z < nz; ++z) {
-    const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
-    const double gox = gox_[z], goy = goy_[z];
-    if (grx_[z] == 0 && gry_[z] == 0) {  // nothing to limit (phi = 1)
-      for (Index c = b; c < b + n; ++c) cgx_[c] = grx_[z], cgy_[c] = gry_[z];
-      continue;
-    }
-    for (Index k = 0; k < n; ++k) {
-      const Index c = b + k, cn = b + (k + 1) % n, cp = b + (k + n - 1) % n;
-      const double r = crho_[c];
-      const Index p = m.corner_point[c], pn = m.corner_point[cn], pp = m.corner_point[cp];
-      const double qx[4] = {xo[p], 0.5 * (xo[p] + xo[pn]), gox, 0.5 * (xo[p] + xo[pp])};
-      const double qy[4] = {yo[p], 0.5 * (yo[p] + yo[pn]), goy, 0.5 * (yo[p] + yo[pp])};
-      double phi = 1.0;
-      for (int i = 0; i < 4; ++i) {
-        const double d = grx_[z] * (qx[i] - ccx_[c]) + gry_[z] * (qy[i] - ccy_[c]);
-        if (d < 0 && r + d < 0) phi = std::min(phi, r / -d);  // never negative
-      }
-      phi = std::max(phi, 0.0);
-      cgx_[c] = phi * grx_[z], cgy_[c] = phi * gry_[z];
-    }
-  }
-
-  // The fluxes, face by face (each face once, from the zone that owns it), into their slots.
-  const std::size_t nc2 = 2 * static_cast<std::size_t>(nc);
-#pragma omp parallel for schedule(static) if (nz > kParallelMin)
-  for (Index z = 0; z < nz; ++z) {
-    const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
-    double gnx = 0, gny = 0;
-    for (Index k = 0; k < n; ++k) {
-      const Index p = m.corner_point[b + k];
-      gnx += xn[p], gny += yn[p];
-    }
-    gnx /= n, gny /= n;
-    const double gox = gox_[z], goy = goy_[z];
-    const double* corner_rho = crho_.data() + b;
-    const double* corner_cx = ccx_.data() + b;
-    const double* corner_cy = ccy_.data() + b;
-    const double* corner_gx = cgx_.data() + b;
-    const double* corner_gy = cgy_.data() + b;
-    for (Index k = 0; k < n; ++k) {
-      const Index kp = (k + 1 == n) ? 0 : k + 1;
-      const Index c = b + k;
-      const Index pa = m.corner_point[c], pb = m.corner_point[b + kp];
-      const double mox = 0.5 * (xo[pa] + xo[pb]), moy = 0.5 * (yo[pa] + yo[pb]);
-      const double mnx = 0.5 * (xn[pa] + xn[pb]), mny = 0.5 * (yn[pa] + yn[pb]);
-      // Half sides, once per interior side (from the lower zone).
-      const Index nb = side_zone_[c];
-      if (nb > z) {
-        for (int h = 0; h < 2; ++h) {
-          // Half h: a -> mid (corner c) or mid -> b (corner c1); the cell on the left gains.
-          const std::size_t slot = 2 * static_cast<std::size_t>(c) + h;
-          const double ax0 = h == 0 ? xo[pa] : mox, ay0 = h == 0 ? yo[pa] : moy;
-          const double ax1 = h == 0 ? xn[pa] : mnx, ay1 = h == 0 ? yn[pa] : mny;
-          const double bx0 = h == 0 ? mox : xo[pb], by0 = h == 0 ? moy : yo[pb];
-          const double bx1 = h == 0 ? mnx : xn[pb], by1 = h == 0 ? mny : yn[pb];
-          const Swept s0 = swept_quad<Rz>(ax0, ay0, ax1, ay1, bx1, by1, bx0, by0, 0.0, 0.0);
-          if (s0.area == 0 && s0.mx == 0 && s0.my == 0) {
-            flux_mass_[slot] = 0, flux_active_[slot] = 0;
-            for (std::size_t i = 0; i < nf; ++i) flux_q_[i * nc2 + slot] = 0;
-            continue;
-          }
-          const Index d = s0.area > 0 ? nb : z;
-          const Index left = h == 0 ? c : b + kp, right = h == 0 ? side_corner0_[c] : side_corner1_[c];
-          // The donor corner's density and (zone) gradient: a corner never gives more than
-          // it holds, and corner densities stay tied to their neighbours'.
-          const Index dc = s0.area > 0 ? right : left;
-          const double mx = s0.mx - ccx_[dc] * s0.area, my = s0.my - ccy_[dc] * s0.area;
-          double flux = crho_[dc] * s0.area + cgx_[dc] * mx + cgy_[dc] * my;
-          // Its mean density within the donor zone's bounds (corner densities may lie
-          // outside them): no new extrema.
-          if (s0.simple && limiter) {
-            const double lo = s0.area * rlo_[d], hi = s0.area * rhi_[d];
-            flux = std::clamp(flux, std::min(lo, hi), std::max(lo, hi));
-          }
-          flux_mass_[slot] = flux, flux_active_[slot] = 1;
-          for (std::size_t i = 0; i < nf; ++i) {
-            const double qd = f.specific[i][d];
-            double fq = 0;
-            if (std::isfinite(qd)) {
-              const std::size_t id = i * nz + d;
-              const double mqx = s0.mx - cx_[d] * s0.area, mqy = s0.my - cy_[d] * s0.area;
-              fq = qd * flux + crho_[dc] * (qgx_[id] * mqx + qgy_[id] * mqy);
-              // The flux's mean value stays within the donor's neighbourhood bounds (a jump
-              // of density inside the swept region could push it out): a repair that keeps
-              // conservation, since the same flux leaves one zone and enters the other.
-              // (A bow-tie region's mean is no point value: it is left alone.)
-              if (s0.simple) {
-                const double lo = flux * qmin_[id], hi = flux * qmax_[id];
-                fq = std::clamp(fq, std::min(lo, hi), std::max(lo, hi));
-              }
-            }
-            flux_q_[i * nc2 + slot] = fq;
-          }
-        }
-      }
-      // Centre segment mid(k, k+1) -> centre: corner c on the left, corner c1 on the right.
-      const std::size_t slot = nc2 + c;
-      const Swept s = swept_quad<Rz>(mox, moy, mnx, mny, gnx, gny, gox, goy, 0.0, 0.0);
-      if ((s.area == 0 && s.mx == 0 && s.my == 0) || (Rz && !segment_point_[c])) {
-        flux_mass_[slot] = seg_px_[c] = seg_py_[c] = seg_ke_[c] = 0, flux_active_[slot] = 0;
-        continue;
-      }
-      const Index kd = s.area > 0 ? kp : k;  // the donor corner
-      const double flux = corner_rho[kd] * s.area + corner_gx[kd] * (s.mx - corner_cx[kd] * s.area) +
-                          corner_gy[kd] * (s.my - corner_cy[kd] * s.area);
-      const Index pd = s.area > 0 ? pb : pa;
-      const double mx = s.mx - xo[pd] * s.area, my = s.my - yo[pd] * s.area;
-      const double u = f.vx[pd], w = f.vy[pd];
-      const double du = vgx_[pd] * mx + vgy_[pd] * my, dw = wgx_[pd] * mx + wgy_[pd] * my;
-      flux_mass_[slot] = flux, flux_active_[slot] = 1;
-      seg_px_[c] = u * flux + corner_rho[kd] * du;
-      seg_py_[c] = w * flux + corner_rho[kd] * dw;
-      seg_ke_[c] = 0.5 * (u * u + w * w) * flux + corner_rho[kd] * (u * du + w * dw);
-    }
-  }
-
-  // The sums per zone, corner and point, in the serial sweep's order (bitwise the same on
-  // any number of threads); a slot's sign bit says whether the flux is added or taken.
+  const std::size_t nf = f.specific.size(), nc2 = 2 * static_cast<std::size_t>(nc);
   const auto sum = [](const Index* begin, const Index* end, const double* value) {
     double s = 0;
     for (const Index* e = begin; e != end; ++e) {
@@ -627,6 +440,262 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
     }
     point_touched_[p] = a;
     dm_point_[p] = sm, dpx_[p] = sx, dpy_[p] = sy, dke_[p] = sk;
+  }
+}
+
+template <bool Rz>
+void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, const double* yn, RemapFields& f,
+                          bool limiter) {
+  const Mesh& m = mesh_;
+  const Index nz = m.num_zones(), np = m.num_points(), nc = m.num_corners();
+  const std::size_t nf = f.specific.size();
+
+  // Old geometry: areas, centroids (the reconstruction's centres), densities, and the old
+  // corners (x_k, mid(k, k+1), centre, mid(k-1, k)): their own densities m_c / A_c feed the
+  // centre-segment fluxes, so that a corner never gives more than it holds.
+#pragma omp parallel for schedule(static) if (nz > kParallelMin)
+  for (Index z = 0; z < nz; ++z) {
+    const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
+    const double x0 = xo[m.corner_point[b]], y0 = yo[m.corner_point[b]];
+    double a2 = 0, sx = 0, sy = 0;
+    for (Index k = 1; k + 1 < n; ++k) {
+      const Index p = m.corner_point[b + k], q = m.corner_point[b + k + 1];
+      const double ux = xo[p] - x0, uy = yo[p] - y0, wx = xo[q] - x0, wy = yo[q] - y0;
+      const double cr = ux * wy - wx * uy;
+      a2 += cr, sx += (ux + wx) * cr, sy += (uy + wy) * cr;
+    }
+    area_[z] = 0.5 * a2;
+    cx_[z] = x0 + sx / (3 * a2);
+    cy_[z] = y0 + sy / (3 * a2);
+    if constexpr (Rz) {  // the volume and its centroid (int x r dA / V, int y r dA / V)
+      double v = 0, mx = 0, my = 0;
+      for (Index k = 1; k + 1 < n; ++k) {
+        const Index p = m.corner_point[b + k], q = m.corner_point[b + k + 1];
+        const Swept t = swept_quad<true>(x0, y0, xo[p], yo[p], xo[q], yo[q], xo[q], yo[q], 0.0, 0.0);
+        v += t.area, mx += t.mx, my += t.my;
+      }
+      area_[z] = v, cx_[z] = mx / v, cy_[z] = my / v;
+    }
+    rho_[z] = f.zone_mass[z] / area_[z];
+    double gox = 0, goy = 0;
+    for (Index k = 0; k < n; ++k) gox += xo[m.corner_point[b + k]], goy += yo[m.corner_point[b + k]];
+    gox /= n, goy /= n;
+    gox_[z] = gox, goy_[z] = goy;
+    for (Index k = 0; k < n; ++k) {
+      const Index p = m.corner_point[b + k], pn = m.corner_point[b + (k + 1 == n ? 0 : k + 1)],
+                  pp = m.corner_point[b + (k == 0 ? n - 1 : k - 1)];
+      const double qx[4] = {xo[p], 0.5 * (xo[p] + xo[pn]), gox, 0.5 * (xo[p] + xo[pp])};
+      const double qy[4] = {yo[p], 0.5 * (yo[p] + yo[pn]), goy, 0.5 * (yo[p] + yo[pp])};
+      // The limiter's offsets from the centroid: the point, and the side's midpoint if shared.
+      const bool shared = side_zone_[b + k] >= 0;
+      lvx_[b + k] = qx[0] - cx_[z], lvy_[b + k] = qy[0] - cy_[z];
+      lmx_[b + k] = shared ? qx[1] - cx_[z] : 0.0, lmy_[b + k] = shared ? qy[1] - cy_[z] : 0.0;
+      const Swept a = swept_quad<Rz>(qx[0], qy[0], qx[1], qy[1], qx[2], qy[2], qx[3], qy[3], 0.0, 0.0);
+      crho_[b + k] = a.area > 0 ? f.corner_mass[b + k] / a.area : rho_[z];
+      ccx_[b + k] = a.area > 0 ? a.mx / a.area : gox;
+      ccy_[b + k] = a.area > 0 ? a.my / a.area : goy;
+    }
+  }
+  // Least-squares matrices.
+#pragma omp parallel for schedule(static) if (nz > kParallelMin)
+  for (Index z = 0; z < nz; ++z) {
+    double a = 0, b = 0, c = 0;
+    for (Index k = zone_nbr_begin_[z]; k < zone_nbr_begin_[z + 1]; ++k) {
+      const double dx = cx_[zone_nbr_[k]] - cx_[z], dy = cy_[zone_nbr_[k]] - cy_[z];
+      ncx_[k] = dx, ncy_[k] = dy;  // for every field's gradient
+      a += dx * dx, b += dx * dy, c += dy * dy;
+    }
+    pseudo_inverse(a, b, c, &zlsq_[3 * static_cast<std::size_t>(z)]);
+  }
+#pragma omp parallel for schedule(static) if (np > kParallelMin)
+  for (Index p = 0; p < np; ++p) {
+    double a = 0, b = 0, c = 0;
+    for (Index k = point_nbr_begin_[p]; k < point_nbr_begin_[p + 1]; ++k) {
+      const double dx = xo[point_nbr_[k]] - xo[p], dy = yo[point_nbr_[k]] - yo[p];
+      pdx_[k] = dx, pdy_[k] = dy;  // for the velocity gradients
+      a += dx * dx, b += dx * dy, c += dy * dy;
+    }
+    pseudo_inverse(a, b, c, &plsq_[3 * static_cast<std::size_t>(p)]);
+  }
+  zone_gradients(rho_.data(), limiter, grx_.data(), gry_.data(), rlo_.data(), rhi_.data());
+  qgx_.resize(nf * nz), qgy_.resize(nf * nz), qmin_.resize(nf * nz), qmax_.resize(nf * nz);
+  flux_q_.resize(nf * 2 * static_cast<std::size_t>(nc));
+  for (std::size_t i = 0; i < nf; ++i)
+    zone_gradients(f.specific[i], limiter, qgx_.data() + i * nz, qgy_.data() + i * nz, qmin_.data() + i * nz,
+                   qmax_.data() + i * nz);
+  point_gradients(f.vx, f.vy, limiter, vgx_.data(), vgy_.data(), wgx_.data(), wgy_.data());
+
+  // The corner gradient: the zone's limited one, scaled where needed so that the corner's
+  // reconstruction stays non-negative at its vertices.
+#pragma omp parallel for schedule(static) if (nz > kParallelMin)
+  for (Index z = 0; z < nz; ++z) {
+    const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
+    const double gox = gox_[z], goy = goy_[z];
+    if (grx_[z] == 0 && gry_[z] == 0) {  // nothing to limit (phi = 1)
+      for (Index c = b; c < b + n; ++c) cgx_[c] = grx_[z], cgy_[c] = gry_[z];
+      continue;
+    }
+    for (Index k = 0; k < n; ++k) {
+      const Index c = b + k, cn = b + (k + 1 == n ? 0 : k + 1), cp = b + (k == 0 ? n - 1 : k - 1);
+      const double r = crho_[c];
+      const Index p = m.corner_point[c], pn = m.corner_point[cn], pp = m.corner_point[cp];
+      const double qx[4] = {xo[p], 0.5 * (xo[p] + xo[pn]), gox, 0.5 * (xo[p] + xo[pp])};
+      const double qy[4] = {yo[p], 0.5 * (yo[p] + yo[pn]), goy, 0.5 * (yo[p] + yo[pp])};
+      double phi = 1.0;
+      for (int i = 0; i < 4; ++i) {
+        const double d = grx_[z] * (qx[i] - ccx_[c]) + gry_[z] * (qy[i] - ccy_[c]);
+        if (d < 0 && r + d < 0) phi = std::min(phi, r / -d);  // never negative
+      }
+      phi = std::max(phi, 0.0);
+      cgx_[c] = phi * grx_[z], cgy_[c] = phi * gry_[z];
+    }
+  }
+
+  // The fluxes, face by face (each face once, from the zone that owns it), into their slots.
+  // On one thread (or below the parallel loops' size) each flux goes straight into the sums
+  // of its cells instead, in the order in which the gathers below would add it: the same
+  // bits without the slots' second pass (docs/ale.md, "Remap cost").
+  const std::size_t nc2 = 2 * static_cast<std::size_t>(nc);
+  const bool direct = nz <= kParallelMin || omp_get_max_threads() == 1;
+  if (direct) {
+    std::fill(zone_dm_.begin(), zone_dm_.end(), 0.0);
+    std::fill(corner_dm_.begin(), corner_dm_.end(), 0.0);
+    zone_dq_.assign(nf * nz, 0.0);  // allocates at the first remap only
+    std::fill(zone_hit_.begin(), zone_hit_.end(), 0);
+    for (auto* v : {&dm_point_, &dpx_, &dpy_, &dke_}) std::fill(v->begin(), v->end(), 0.0);
+    std::fill(point_touched_.begin(), point_touched_.end(), 0);
+  }
+#pragma omp parallel for schedule(static) if (nz > kParallelMin && !direct)
+  for (Index z = 0; z < nz; ++z) {
+    const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
+    double gnx = 0, gny = 0;
+    for (Index k = 0; k < n; ++k) {
+      const Index p = m.corner_point[b + k];
+      gnx += xn[p], gny += yn[p];
+    }
+    gnx /= n, gny /= n;
+    const double gox = gox_[z], goy = goy_[z];
+    const double* corner_rho = crho_.data() + b;
+    const double* corner_cx = ccx_.data() + b;
+    const double* corner_cy = ccy_.data() + b;
+    const double* corner_gx = cgx_.data() + b;
+    const double* corner_gy = cgy_.data() + b;
+    for (Index k = 0; k < n; ++k) {
+      const Index kp = (k + 1 == n) ? 0 : k + 1;
+      const Index c = b + k;
+      const Index pa = m.corner_point[c], pb = m.corner_point[b + kp];
+      const double mox = 0.5 * (xo[pa] + xo[pb]), moy = 0.5 * (yo[pa] + yo[pb]);
+      const double mnx = 0.5 * (xn[pa] + xn[pb]), mny = 0.5 * (yn[pa] + yn[pb]);
+      // Half sides, once per interior side (from the lower zone).
+      const Index nb = side_zone_[c];
+      if (nb > z) {
+        for (int h = 0; h < 2; ++h) {
+          // Half h: a -> mid (corner c) or mid -> b (corner c1); the cell on the left gains.
+          const std::size_t slot = 2 * static_cast<std::size_t>(c) + h;
+          const double ax0 = h == 0 ? xo[pa] : mox, ay0 = h == 0 ? yo[pa] : moy;
+          const double ax1 = h == 0 ? xn[pa] : mnx, ay1 = h == 0 ? yn[pa] : mny;
+          const double bx0 = h == 0 ? mox : xo[pb], by0 = h == 0 ? moy : yo[pb];
+          const double bx1 = h == 0 ? mnx : xn[pb], by1 = h == 0 ? mny : yn[pb];
+          const Swept s0 = swept_quad<Rz>(ax0, ay0, ax1, ay1, bx1, by1, bx0, by0, 0.0, 0.0);
+          if (s0.area == 0 && s0.mx == 0 && s0.my == 0) {
+            if (direct) continue;  // adds nothing
+            flux_mass_[slot] = 0, flux_active_[slot] = 0;
+            for (std::size_t i = 0; i < nf; ++i) flux_q_[i * nc2 + slot] = 0;
+            continue;
+          }
+          const Index d = s0.area > 0 ? nb : z;
+          const Index left = h == 0 ? c : b + kp, right = h == 0 ? side_corner0_[c] : side_corner1_[c];
+          // The donor corner's density and (zone) gradient: a corner never gives more than
+          // it holds, and corner densities stay tied to their neighbours'.
+          const Index dc = s0.area > 0 ? right : left;
+          const double mx = s0.mx - ccx_[dc] * s0.area, my = s0.my - ccy_[dc] * s0.area;
+          double flux = crho_[dc] * s0.area + cgx_[dc] * mx + cgy_[dc] * my;
+          // Its mean density within the donor zone's bounds (corner densities may lie
+          // outside them): no new extrema.
+          if (s0.simple && limiter) {
+            const double lo = s0.area * rlo_[d], hi = s0.area * rhi_[d];
+            flux = std::clamp(flux, std::min(lo, hi), std::max(lo, hi));
+          }
+          if (direct) {
+            zone_dm_[z] += flux, zone_dm_[nb] -= flux;
+            corner_dm_[left] += flux, corner_dm_[right] -= flux;
+            zone_hit_[z] = zone_hit_[nb] = 1;
+          } else {
+            flux_mass_[slot] = flux, flux_active_[slot] = 1;
+          }
+          for (std::size_t i = 0; i < nf; ++i) {
+            const double qd = f.specific[i][d];
+            double fq = 0;
+            if (std::isfinite(qd)) {
+              const std::size_t id = i * nz + d;
+              const double mqx = s0.mx - cx_[d] * s0.area, mqy = s0.my - cy_[d] * s0.area;
+              fq = qd * flux + crho_[dc] * (qgx_[id] * mqx + qgy_[id] * mqy);
+              // The flux's mean value stays within the donor's neighbourhood bounds (a jump
+              // of density inside the swept region could push it out): a repair that keeps
+              // conservation, since the same flux leaves one zone and enters the other.
+              // (A bow-tie region's mean is no point value: it is left alone.)
+              if (s0.simple) {
+                const double lo = flux * qmin_[id], hi = flux * qmax_[id];
+                fq = std::clamp(fq, std::min(lo, hi), std::max(lo, hi));
+              }
+            }
+            if (direct)
+              zone_dq_[i * nz + z] += fq, zone_dq_[i * nz + nb] -= fq;
+            else
+              flux_q_[i * nc2 + slot] = fq;
+          }
+        }
+      }
+      // Centre segment mid(k, k+1) -> centre: corner c on the left, corner c1 on the right.
+      const std::size_t slot = nc2 + c;
+      const Swept s = swept_quad<Rz>(mox, moy, mnx, mny, gnx, gny, gox, goy, 0.0, 0.0);
+      if ((s.area == 0 && s.mx == 0 && s.my == 0) || (Rz && !segment_point_[c])) {
+        if (!direct) flux_mass_[slot] = seg_px_[c] = seg_py_[c] = seg_ke_[c] = 0, flux_active_[slot] = 0;
+        continue;
+      }
+      const Index kd = s.area > 0 ? kp : k;  // the donor corner
+      const double flux = corner_rho[kd] * s.area + corner_gx[kd] * (s.mx - corner_cx[kd] * s.area) +
+                          corner_gy[kd] * (s.my - corner_cy[kd] * s.area);
+      const Index pd = s.area > 0 ? pb : pa;
+      const double mx = s.mx - xo[pd] * s.area, my = s.my - yo[pd] * s.area;
+      const double u = f.vx[pd], w = f.vy[pd];
+      const double du = vgx_[pd] * mx + vgy_[pd] * my, dw = wgx_[pd] * mx + wgy_[pd] * my;
+      const double px = u * flux + corner_rho[kd] * du;
+      const double py = w * flux + corner_rho[kd] * dw;
+      const double ke = 0.5 * (u * u + w * w) * flux + corner_rho[kd] * (u * du + w * dw);
+      if (direct) {
+        corner_dm_[c] += flux, corner_dm_[b + kp] -= flux;
+        dm_point_[pa] += flux, dpx_[pa] += px, dpy_[pa] += py, dke_[pa] += ke, point_touched_[pa] = 1;
+        dm_point_[pb] -= flux, dpx_[pb] -= px, dpy_[pb] -= py, dke_[pb] -= ke, point_touched_[pb] = 1;
+      } else {
+        flux_mass_[slot] = flux, flux_active_[slot] = 1;
+        seg_px_[c] = px, seg_py_[c] = py, seg_ke_[c] = ke;
+      }
+    }
+  }
+
+  Index failed_zone = std::numeric_limits<Index>::max();
+  if (direct) {
+    // The sums are there: the new zone and corner values.
+    for (Index z = 0; z < nz; ++z) {
+      if (!zone_hit_[z]) continue;
+      const double m0 = f.zone_mass[z], m1 = m0 + zone_dm_[z];
+      if (!(m1 > 0)) {
+        failed_zone = std::min(failed_zone, z);
+        continue;
+      }
+      for (std::size_t i = 0; i < nf; ++i) {
+        double& q = f.specific[i][z];
+        if (std::isfinite(q)) q = (m0 * q + zone_dq_[i * nz + z]) / m1;
+      }
+      f.zone_mass[z] = m1;
+    }
+    if (failed_zone != std::numeric_limits<Index>::max())
+      fail_mass(m, "zone", failed_zone, f.zone_mass[failed_zone] + zone_dm_[failed_zone]);
+    for (Index c = 0; c < nc; ++c)
+      if (corner_dm_[c] != 0) f.corner_mass[c] += corner_dm_[c];
+  } else {
+    gather_fluxes(f);
   }
   // Repair: a zone whose corner kept less than a hundredth of its share (subcell densities
   // can drift apart where the mesh and the flow shear; a swept region then takes more than

@@ -55,6 +55,7 @@ class Remapper {
  private:
   template <bool Rz>
   void remap_impl(const double* xo, const double* yo, const double* xn, const double* yn, RemapFields& f, bool limiter);
+  void gather_fluxes(RemapFields& f);
   void zone_gradients(const double* q, bool limiter, double* gx, double* gy, double* lo, double* hi);
   void point_gradients(const double* qa, const double* qb, bool limiter, double* gax, double* gay, double* gbx,
                        double* gby);
@@ -67,15 +68,20 @@ class Remapper {
   std::vector<Index> side_corner0_;  // per corner: that zone's corner at this corner's point
   std::vector<Index> side_corner1_;  // ... and at the side's other point
   std::vector<char> boundary_point_;
+  std::vector<char> limit_vertex_;  // per corner: the limiter bounds the zone's reconstruction at its point
   std::vector<Index> zone_nbr_begin_, zone_nbr_;    // zones sharing a point with z (not z)
   std::vector<Index> point_nbr_begin_, point_nbr_;  // points sharing an edge with p
   // Workspace.
-  const double *xo_ = nullptr, *yo_ = nullptr;  // old positions during remap()
   std::vector<double> area_, cx_, cy_, rho_, grx_, gry_, rlo_, rhi_;
   std::vector<double> zlsq_, plsq_;  // per zone / point: the 2x2 pseudo-inverse (xx, xy, yy)
   std::vector<double> qgx_, qgy_, qmin_, qmax_, vgx_, vgy_, wgx_, wgy_;
   std::vector<double> crho_, ccx_, ccy_, cgx_, cgy_;  // per corner: density, centroid, gradient
   std::vector<double> gox_, goy_;  // per zone: the mean of the old vertices (the corners' centre point)
+  // Per corner, from the zone's centroid on the old mesh: its point, and the midpoint of its
+  // side (zero where the side is not shared, which the limiter skips); per zone-neighbour
+  // entry, the neighbour's centroid. Computed once per remap for every gradient.
+  std::vector<double> lvx_, lvy_, lmx_, lmy_, ncx_, ncy_;
+  std::vector<double> pdx_, pdy_;  // per point-neighbour entry: the edge to the neighbour, old mesh
   std::vector<double> dm_point_, dpx_, dpy_, dke_;
   std::vector<char> point_touched_;
   // The fluxes are computed face by face (in parallel) into slots, then summed per zone,
@@ -86,6 +92,9 @@ class Remapper {
   std::vector<double> flux_mass_, flux_q_, seg_px_, seg_py_, seg_ke_;
   std::vector<char> flux_active_;
   std::vector<Index> zone_list_begin_, zone_list_, corner_list_begin_, corner_list_, point_list_begin_, point_list_;
+  // On one thread the fluxes go straight into these sums (and dm_point_, ...) instead.
+  std::vector<double> zone_dm_, corner_dm_, zone_dq_;
+  std::vector<char> zone_hit_;
   long repaired_ = 0;
 };
 

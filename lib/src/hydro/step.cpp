@@ -14,6 +14,7 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hydro/boundary.hpp"
@@ -577,7 +578,13 @@ void Simulation::Impl::step(double t_stop) {
   }
   if (remap) {
     RemapState state{mesh(), t, cycle, x, y, vx, vy, e, sxx, syy, sxy, zone_mass, point_mass, area};
-    if (remap->remap(state)) recompute_state();
+    if (remap->remap(state)) {
+      // The built-in ALE remap charges its moves to the wall check's budgets (ale_remap.cpp):
+      // they stay valid, and the next step tests only the points near a wall.
+      const bool charged = std::exchange(wall_clearance.charged, false);
+      recompute_state();
+      wall_clearance.valid = charged;
+    }
   }
   if (observer) observer(*owner);
 }

@@ -34,14 +34,16 @@ struct WallGrid {
 // point whose step is shorter than its budget cannot cross a wall and is not tested; the
 // others are tested and get a fresh budget from their end position. Budgets hold only for the
 // positions of accepted steps: a rejected step, a restore or a remap invalidates them
-// (recompute_state), and every budget is recomputed every kRefreshCycles cycles so the
-// round-off of the subtracted steps cannot add up.
+// (recompute_state), unless the remap charged its moves to them as a step does, and every
+// budget is recomputed every kRefreshCycles cycles so the round-off of the subtracted steps
+// cannot add up.
 struct WallClearance {
   static constexpr long kRefreshCycles = 1024;
   std::vector<float> budget;  // per point, rounded down
   bool valid = false;
-  long cycle = 0;    // the cycle at which every budget was last computed afresh
-  double slack = 0;  // subtracted from every distance: the walls' round-off tolerance and more
+  bool charged = false;  // the last remap subtracted its moves from the valid budgets
+  long cycle = 0;        // the cycle at which every budget was last computed afresh
+  double slack = 0;      // subtracted from every distance: the walls' round-off tolerance and more
 };
 
 }  // namespace stagger

@@ -762,7 +762,7 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
       // Two layers: the corner forces of the zones around this rank's points and their
       // predicted velocities; a third for the edge viscosity's neighbours (docs/parallel.md).
       Part part = make_part(g->mesh(), owner, q, g->edge_viscosity ? 3 : 2);
-      packed = std::string();
+      std::string().swap(packed);  // (a move from an empty string keeps the buffer)
       packed = pack_part(*g, part);
       part_zones[q] = std::move(part.zones);
       part_points[q] = std::move(part.points);
@@ -789,7 +789,7 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
     in.get(part.points);
     part_problem.mesh = unpack_mesh(in);
     rest = packed.substr(in.at);
-    packed = std::string();
+    std::string().swap(packed);
   }
   Unpacker in(rest);
   part.zone_local.assign(global_zones, -1);
@@ -822,7 +822,7 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
     in.get(s.wall_grid.cell_begin);
     in.get(s.wall_grid.items);
     in.expect_end();
-    rest = std::string();
+    std::string().swap(rest);
   };
   // The state: the serial set-up's, bit for bit, one array at a time. The other ranks set
   // their parts up and receive; rank 0 sets its own up last, once the whole state has dropped

@@ -213,10 +213,6 @@ class MpiCollective final : public Collective {
  public:
   MPI_Comm comm = MPI_COMM_NULL;
   int my_rank = 0, size = 1;
-  std::vector<int> zone_owner;     // global zone -> rank
-  std::vector<Index> zone_local;   // global zone -> this rank's local zone, -1 when absent
-  std::vector<int> point_owner;    // global point -> rank
-  std::vector<Index> point_local;  // global point -> this rank's local point, -1 when absent
   std::vector<Neighbour> neighbours;
   std::vector<const StateField*> fields;                  // the present state arrays, in table order
   std::vector<const StateField*> gathered_fields;         // those the whole state on rank 0 serves
@@ -263,15 +259,26 @@ class MpiCollective final : public Collective {
     return {out.dt, out.zone == INT_MAX ? -1 : out.zone};
   }
 
-  std::string zone_text(const Simulation::Impl&, Index zone, const std::function<std::string(Index)>& text) override {
-    const int owner = zone >= 0 && zone < static_cast<Index>(zone_owner.size()) ? zone_owner[zone] : 0;
+  // The text of a global zone or point, worded by its owner: the rank holding it as its own
+  // (a part's global numbers ascend, so a binary search finds it; no map of the whole problem).
+  std::string owner_text(const std::vector<Index>& global, const std::vector<unsigned char>& ghost, Index id,
+                         const std::function<std::string(Index)>& text) {
+    const auto at = std::lower_bound(global.begin(), global.end(), id);
+    const Index local = at != global.end() && *at == id ? static_cast<Index>(at - global.begin()) : -1;
+    int mine = local >= 0 && !ghost[local] ? my_rank : INT_MAX, owner = INT_MAX;
+    MPI_Allreduce(&mine, &owner, 1, MPI_INT, MPI_MIN, comm);
+    if (owner == INT_MAX) owner = 0;  // no such zone or point: rank 0's empty text
     std::string result;
-    if (my_rank == owner && zone_local[zone] >= 0) result = text(zone_local[zone]);
+    if (my_rank == owner && local >= 0) result = text(local);
     int length = static_cast<int>(result.size());
     MPI_Bcast(&length, 1, MPI_INT, owner, comm);
     result.resize(length);
     MPI_Bcast(result.data(), length, MPI_CHAR, owner, comm);
     return result;
+  }
+
+  std::string zone_text(const Simulation::Impl& s, Index zone, const std::function<std::string(Index)>& text) override {
+    return owner_text(s.global_zone, s.ghost_zone, zone, text);
   }
 
   Index min_point(const Simulation::Impl& s, Index local_point) override {
@@ -280,15 +287,9 @@ class MpiCollective final : public Collective {
     return result == INT_MAX ? -1 : result;
   }
 
-  std::string point_text(const Simulation::Impl&, Index point, const std::function<std::string(Index)>& text) override {
-    const int owner = point >= 0 && point < static_cast<Index>(point_owner.size()) ? point_owner[point] : 0;
-    std::string result;
-    if (my_rank == owner && point_local[point] >= 0) result = text(point_local[point]);
-    int length = static_cast<int>(result.size());
-    MPI_Bcast(&length, 1, MPI_INT, owner, comm);
-    result.resize(length);
-    MPI_Bcast(result.data(), length, MPI_CHAR, owner, comm);
-    return result;
+  std::string point_text(const Simulation::Impl& s, Index point,
+                         const std::function<std::string(Index)>& text) override {
+    return owner_text(s.global_point, s.ghost_point, point, text);
   }
 
   void sum(std::span<ExactSum> sums) override {
@@ -744,7 +745,7 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
   // copy of the mesh first, so they never hold more than the scene's mesh and their part.
   // METIS runs before the set-up (which keeps the mesh's connectivity), so that its work
   // space is handed back before the whole state is built (docs/parallel.md, "Memory").
-  std::vector<int>& owner = collective->zone_owner;
+  std::vector<int> owner;  // global zone -> rank
   on_every_rank(c, [&] {
     if (rank != 0) return;  // the other ranks' mesh may be an outline (load_scene_without_mesh)
     if (problem.mesh.num_zones() < size)
@@ -949,7 +950,6 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
   for (Index p = 0; p < np; ++p)
     if (!s.ghost_point[p]) collective->own_points.push_back(p);
   if (s.remap) append_corners(s, collective->own_zones, collective->own_corners);  // the corner masses
-  collective->zone_local = std::move(part.zone_local);
 
   // Halo lists: this rank's ghosts by owner; the owners learn them as global numbers.
   std::vector<std::vector<Index>> ghost_points(size), ghost_zones(size);
@@ -993,7 +993,7 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
     append_corners(s, n.recv_zones, n.recv_corners);
     for (int i = 0; i < recv_counts[2 * q]; ++i) n.send_points.push_back(part.point_local[recv_ids[rd[q] + i]]);
     for (int i = 0; i < recv_counts[2 * q + 1]; ++i)
-      n.send_zones.push_back(collective->zone_local[recv_ids[rd[q] + recv_counts[2 * q] + i]]);
+      n.send_zones.push_back(part.zone_local[recv_ids[rd[q] + recv_counts[2 * q] + i]]);
     append_corners(s, n.send_zones, n.send_corners);
     n.send.resize(per_point * n.send_points.size() + per_zone * n.send_zones.size() +
                   per_corner * n.send_corners.size());
@@ -1022,8 +1022,9 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
     collective->whole = std::move(whole);
   }
   whole.reset();
-  collective->point_owner = std::move(point_owner);
-  collective->point_local = std::move(part.point_local);
+  part = Part{};
+  owner = {};
+  point_owner = {};
   // ALE: the part's own remap (built by its set-up on the part's mesh) gives way to the
   // distributed one, which runs the whole problem's on rank 0.
   if (s.remap) s.remap = std::make_shared<DistributedRemap>(s, *collective);

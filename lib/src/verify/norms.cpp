@@ -147,13 +147,26 @@ FrontCrossing front_crossing(const Mesh& mesh, std::span<const double> x, std::s
   // Edges (a, b), a < b, in ascending (a, b) order, each with its zones in ascending order:
   // point a's edges to higher points from its own corners (no list of every edge, which a
   // 10^6-zone mesh makes 48 MB; docs/parallel.md, "Memory"). An interior edge has two zones.
+  // A mesh built by hand may lack the point-to-corner lists: then they are made here.
+  const auto points = static_cast<std::size_t>(mesh.num_points());
+  std::span<const Index> point_begin = mesh.point_corner_begin, point_corners = mesh.point_corners;
+  std::vector<Index> made_begin, made_corners;
+  if (point_begin.size() != points + 1 || point_corners.size() != mesh.corner_point.size()) {
+    made_begin.assign(points + 1, 0);
+    for (Index p : mesh.corner_point) ++made_begin[static_cast<std::size_t>(p) + 1];
+    for (std::size_t p = 0; p < points; ++p) made_begin[p + 1] += made_begin[p];
+    made_corners.resize(mesh.corner_point.size());
+    std::vector<Index> next(made_begin.begin(), made_begin.end() - 1);
+    for (Index c = 0; c < mesh.num_corners(); ++c) made_corners[next[mesh.corner_point[c]]++] = c;
+    point_begin = made_begin, point_corners = made_corners;
+  }
   FrontCrossing front;
   double sum = 0;
   std::vector<std::pair<Index, Index>> around;  // (b, zone) of point a's edges
   for (Index a = 0; a < mesh.num_points(); ++a) {
     around.clear();
-    for (Index j = mesh.point_corner_begin[a]; j < mesh.point_corner_begin[a + 1]; ++j) {
-      const Index c = mesh.point_corners[j], z = mesh.corner_zone[c];
+    for (Index j = point_begin[a]; j < point_begin[a + 1]; ++j) {
+      const Index c = point_corners[j], z = mesh.corner_zone[c];
       const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
       const Index next = mesh.corner_point[c + 1 < end ? c + 1 : begin];
       const Index prev = mesh.corner_point[c > begin ? c - 1 : end - 1];

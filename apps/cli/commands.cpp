@@ -188,13 +188,14 @@ int run_command(const std::vector<std::string>& args) {
     omp_set_num_threads(threads);
   }
   const bool quiet = arguments.flag("--quiet");
-  // Under mpirun every rank reads the scene; rank 0 reports (docs/parallel.md).
+  // Under mpirun rank 0 reads and meshes the scene, the other ranks read it without its mesh;
+  // rank 0 reports (docs/parallel.md).
   start_mpi_if_launched();
   const bool root = mpi_state().rank == 0;
   Scene scene;
   RunControl control;
+  scene = load_scene_on_every_rank(scene_path, overrides_of(arguments));
   on_every_rank([&] {
-    scene = load_scene(scene_path, overrides_of(arguments));
     control = scene.control;
     if (arguments.has("--out")) control.output_directory = arguments.value("--out");
     check_output_directory(control.output_directory);

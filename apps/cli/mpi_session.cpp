@@ -3,7 +3,9 @@
 
 #include <sys/resource.h>
 
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <sstream>
 #include <vector>
@@ -66,6 +68,62 @@ void on_every_rank(const std::function<void()>& work) {
   }
 #endif
   work();
+}
+
+Scene load_scene_on_every_rank(const std::string& path,
+                               const std::vector<std::pair<std::string, std::string>>& overrides) {
+  Scene scene;
+#ifdef STAGGER_WITH_MPI
+  const MpiState& state = mpi_state();
+  if (state.active && state.ranks > 1) {
+    on_every_rank([&] {
+      if (state.rank == 0) scene = load_scene(path, overrides);
+    });
+    // The outline: the source, then the region names, then the tag names, each after its
+    // length (a count before each list).
+    std::string outline;
+    const auto put = [&](const std::string& text) {
+      const std::uint64_t n = text.size();
+      outline.append(reinterpret_cast<const char*>(&n), sizeof n);
+      outline += text;
+    };
+    if (state.rank == 0) {
+      const Mesh& m = scene.problem.mesh;
+      put(m.source);
+      put(std::to_string(m.region_names.size()));
+      for (const std::string& name : m.region_names) put(name);
+      put(std::to_string(m.tags.size()));
+      for (const BoundaryTag& tag : m.tags) put(tag.name);
+    }
+    std::uint64_t length = outline.size();
+    MPI_Bcast(&length, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+    outline.resize(length);
+    MPI_Bcast(outline.data(), static_cast<int>(length), MPI_CHAR, 0, MPI_COMM_WORLD);
+    if (state.rank != 0) {
+      std::size_t at = 0;
+      const auto get = [&] {
+        std::uint64_t n = 0;
+        std::memcpy(&n, outline.data() + at, sizeof n);
+        at += sizeof n;
+        std::string text = outline.substr(at, n);
+        at += n;
+        return text;
+      };
+      Mesh mesh;
+      mesh.source = get();
+      mesh.region_names.resize(std::stoul(get()));
+      for (std::string& name : mesh.region_names) name = get();
+      mesh.tags.resize(std::stoul(get()));
+      for (BoundaryTag& tag : mesh.tags) tag.name = get();
+      on_every_rank([&] { scene = load_scene_without_mesh(path, overrides, std::move(mesh)); });
+    } else {
+      on_every_rank([] {});
+    }
+    return scene;
+  }
+#endif
+  on_every_rank([&] { scene = load_scene(path, overrides); });
+  return scene;
 }
 
 Simulation distributed_simulation(Problem problem) {

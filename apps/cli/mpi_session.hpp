@@ -7,6 +7,7 @@
 
 #include "stagger/error.hpp"
 #include "stagger/problem.hpp"
+#include "stagger/scene.hpp"
 #include "stagger/simulation.hpp"
 
 namespace stagger::cli {
@@ -31,6 +32,11 @@ void finish_mpi();
 
 // Runs `work` on every rank; an Error on some rank becomes the same CollectiveError on all.
 void on_every_rank(const std::function<void()>& work);
+// The scene, read on every rank (errors as on_every_rank's). Under MPI only rank 0 meshes it;
+// the other ranks read it without its mesh, standing for it with rank 0's outline (source,
+// region and tag names), since distribute() sends them their part (docs/parallel.md, "Memory").
+Scene load_scene_on_every_rank(const std::string& path,
+                               const std::vector<std::pair<std::string, std::string>>& overrides);
 // The Simulation of this rank: the whole problem when serial, this rank's part under MPI.
 Simulation distributed_simulation(Problem problem);
 

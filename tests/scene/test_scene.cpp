@@ -91,6 +91,31 @@ TEST_F(SceneFile, ValidSceneLoadsWithDefaults) {
   EXPECT_FALSE(stagger::describe(scene).empty());
 }
 
+// A distributed run's other ranks (docs/parallel.md): the scene read against rank 0's outline
+// of the mesh gives the same set-up without a zone, and the names the outline lacks are errors.
+TEST_F(SceneFile, SceneReadWithoutMeshMatchesTheFullReadButTheZones) {
+  const std::string path = write(base_scene);
+  const stagger::Scene full = stagger::load_scene(path);
+  stagger::Mesh outline = full.problem.mesh;  // load_scene_without_mesh keeps only the names
+  const stagger::Scene part = stagger::load_scene_without_mesh(path, {}, outline);
+  EXPECT_EQ(part.problem.mesh.num_zones(), 0);
+  EXPECT_EQ(part.problem.mesh.num_points(), 0);
+  EXPECT_EQ(part.problem.mesh.region_names, full.problem.mesh.region_names);
+  ASSERT_EQ(part.problem.mesh.tags.size(), full.problem.mesh.tags.size());
+  for (const auto& tag : part.problem.mesh.tags) EXPECT_TRUE(tag.edges.empty() && tag.points.empty());
+  EXPECT_EQ(part.problem.regions.size(), full.problem.regions.size());
+  EXPECT_EQ(part.problem.boundaries.size(), full.problem.boundaries.size());
+  EXPECT_DOUBLE_EQ(part.problem.t_end, full.problem.t_end);
+  EXPECT_EQ(part.control.output_directory, full.control.output_directory);
+  outline.tags.pop_back();
+  try {
+    stagger::load_scene_without_mesh(path, {}, outline);
+    ADD_FAILURE() << "a boundary tag missing from the outline was accepted";
+  } catch (const stagger::Error& error) {
+    EXPECT_CONTAINS(error.what(), "the mesh has no boundary tag '" + full.problem.mesh.tags.back().name + "'");
+  }
+}
+
 TEST_F(SceneFile, MalformedTomlNamesLineAndColumn) {
   const std::string message = error_of(edit("nx = 10", "nx = = 10"));
   EXPECT_CONTAINS(message, located(7) + ":");

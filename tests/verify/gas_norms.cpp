@@ -1,8 +1,11 @@
 // Error norms and mesh helpers of lib/src/verify/norms.cpp on hand-built meshes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <tuple>
+#include <vector>
 
 #include "stagger/error.hpp"
 #include "stagger/verify.hpp"
@@ -90,6 +93,59 @@ TEST(Norms, FrontCrossingInterpolatesBetweenNeighbourCentres) {
   // A threshold the field never crosses gives no front.
   const auto none = stagger::front_crossing(mesh, mesh.x, mesh.y, density, 10.0, [](double x, double) { return x; });
   EXPECT_EQ(none.crossings, 0);
+}
+
+// The front search as it was first written (every edge listed and sorted): the point-by-point
+// pairing must give the same crossings and the same sum, bit for bit.
+stagger::FrontCrossing sorted_front(const stagger::Mesh& mesh, const std::vector<double>& position,
+                                    const std::vector<double>& field, double threshold) {
+  std::vector<std::tuple<Index, Index, Index>> edges;
+  for (Index z = 0; z < mesh.num_zones(); ++z) {
+    const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
+    for (Index c = begin; c < end; ++c) {
+      const Index a = mesh.corner_point[c], b = mesh.corner_point[c + 1 < end ? c + 1 : begin];
+      edges.emplace_back(std::min(a, b), std::max(a, b), z);
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  stagger::FrontCrossing front;
+  double sum = 0;
+  for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
+    const auto [a0, b0, z0] = edges[i];
+    const auto [a1, b1, z1] = edges[i + 1];
+    if (a0 != a1 || b0 != b1) continue;
+    const Index inner = position[z0] <= position[z1] ? z0 : z1, outer = inner == z0 ? z1 : z0;
+    if (field[inner] >= threshold && field[outer] < threshold) {
+      sum += position[inner] +
+             (field[inner] - threshold) / (field[inner] - field[outer]) * (position[outer] - position[inner]);
+      ++front.crossings;
+    }
+    ++i;
+  }
+  if (front.crossings > 0) front.position = sum / front.crossings;
+  return front;
+}
+
+TEST(Norms, FrontCrossingPairsEdgesAsTheSortedEdgeListDid) {
+  stagger::Mesh mesh = grid(23, 17, 0.0, 1.0, 0.0, 1.0);
+  for (Index p = 0; p < mesh.num_points(); ++p) {  // a distorted mesh, a ragged circular front
+    const double x = mesh.x[p], y = mesh.y[p];
+    if (x > 0 && x < 1 && y > 0 && y < 1) mesh.x[p] += 0.01 * std::sin(7.0 * p), mesh.y[p] += 0.01 * std::cos(5.0 * p);
+  }
+  const auto centres = stagger::zone_centres(mesh, mesh.x, mesh.y);
+  std::vector<double> density(mesh.num_zones()), position(mesh.num_zones());
+  for (Index z = 0; z < mesh.num_zones(); ++z) {
+    position[z] = std::hypot(centres[0][z], centres[1][z]);
+    density[z] = 1.0 + 3.0 * std::exp(-3.0 * position[z]) + 0.1 * std::sin(13.0 * z);
+  }
+  const auto radius = [](double x, double y) { return std::hypot(x, y); };
+  for (double threshold : {1.5, 2.0, 2.5}) {
+    const auto expected = sorted_front(mesh, position, density, threshold);
+    ASSERT_GT(expected.crossings, 5);
+    const auto front = stagger::front_crossing(mesh, mesh.x, mesh.y, density, threshold, radius);
+    EXPECT_EQ(front.crossings, expected.crossings);
+    EXPECT_EQ(front.position, expected.position);  // bitwise: the same pairs summed in the same order
+  }
 }
 
 TEST(Norms, GroupingByValueChainsValuesWithinTheTolerance) {

@@ -15,8 +15,8 @@ namespace stagger {
 /// Sets up `problem` over the ranks of `comm` (collective: every rank passes the same
 /// problem, e.g. from the same scene) and returns this rank's part: its zones (partitioned by
 /// METIS) with the ghost layers the step needs. Rank 0 sets up the whole problem and sends
-/// each rank its part; the other ranks use only the non-mesh parts of theirs. On one rank it
-/// is a serial Simulation.
+/// each rank its part; the other ranks use only the non-mesh parts of theirs, so their mesh
+/// may be an outline (load_scene_without_mesh). On one rank it is a serial Simulation.
 /// Throws stagger::Error, the same on every rank, for a set-up error or a problem that a
 /// distributed run cannot take (periodic boundaries, fewer zones than ranks). An ALE remap
 /// runs on rank 0 on the gathered state (docs/parallel.md, "ALE").

@@ -61,6 +61,14 @@ struct Scene {
 /// the line and the key.
 Scene load_scene(const std::string& path, const std::vector<std::pair<std::string, std::string>>& overrides = {});
 
+/// Reads a scene as load_scene does but without meshing it: `outline` (the mesh's source,
+/// region names and boundary tag names, no zones or points) stands for the mesh that another
+/// process read. For the ranks of a distributed run other than 0, which get their part of the
+/// mesh from rank 0 (docs/parallel.md, "Decomposition"): the checks that need the mesh's
+/// zones, the whole-problem validation and the warnings are rank 0's alone.
+Scene load_scene_without_mesh(const std::string& path,
+                              const std::vector<std::pair<std::string, std::string>>& overrides, Mesh outline);
+
 /// A human-readable description of the resolved set-up (`stagger check`).
 std::string describe(const Scene& scene);
 

@@ -213,10 +213,6 @@ class MpiCollective final : public Collective {
  public:
   MPI_Comm comm = MPI_COMM_NULL;
   int my_rank = 0, size = 1;
-  std::vector<int> zone_owner;     // global zone -> rank
-  std::vector<Index> zone_local;   // global zone -> this rank's local zone, -1 when absent
-  std::vector<int> point_owner;    // global point -> rank
-  std::vector<Index> point_local;  // global point -> this rank's local point, -1 when absent
   std::vector<Neighbour> neighbours;
   std::vector<const StateField*> fields;                  // the present state arrays, in table order
   std::vector<const StateField*> gathered_fields;         // those the whole state on rank 0 serves
@@ -263,15 +259,26 @@ class MpiCollective final : public Collective {
     return {out.dt, out.zone == INT_MAX ? -1 : out.zone};
   }
 
-  std::string zone_text(const Simulation::Impl&, Index zone, const std::function<std::string(Index)>& text) override {
-    const int owner = zone >= 0 && zone < static_cast<Index>(zone_owner.size()) ? zone_owner[zone] : 0;
+  // The text of a global zone or point, worded by its owner: the rank holding it as its own
+  // (a part's global numbers ascend, so a binary search finds it; no map of the whole problem).
+  std::string owner_text(const std::vector<Index>& global, const std::vector<unsigned char>& ghost, Index id,
+                         const std::function<std::string(Index)>& text) {
+    const auto at = std::lower_bound(global.begin(), global.end(), id);
+    const Index local = at != global.end() && *at == id ? static_cast<Index>(at - global.begin()) : -1;
+    int mine = local >= 0 && !ghost[local] ? my_rank : INT_MAX, owner = INT_MAX;
+    MPI_Allreduce(&mine, &owner, 1, MPI_INT, MPI_MIN, comm);
+    if (owner == INT_MAX) owner = 0;  // no such zone or point: rank 0's empty text
     std::string result;
-    if (my_rank == owner && zone_local[zone] >= 0) result = text(zone_local[zone]);
+    if (my_rank == owner && local >= 0) result = text(local);
     int length = static_cast<int>(result.size());
     MPI_Bcast(&length, 1, MPI_INT, owner, comm);
     result.resize(length);
     MPI_Bcast(result.data(), length, MPI_CHAR, owner, comm);
     return result;
+  }
+
+  std::string zone_text(const Simulation::Impl& s, Index zone, const std::function<std::string(Index)>& text) override {
+    return owner_text(s.global_zone, s.ghost_zone, zone, text);
   }
 
   Index min_point(const Simulation::Impl& s, Index local_point) override {
@@ -280,15 +287,9 @@ class MpiCollective final : public Collective {
     return result == INT_MAX ? -1 : result;
   }
 
-  std::string point_text(const Simulation::Impl&, Index point, const std::function<std::string(Index)>& text) override {
-    const int owner = point >= 0 && point < static_cast<Index>(point_owner.size()) ? point_owner[point] : 0;
-    std::string result;
-    if (my_rank == owner && point_local[point] >= 0) result = text(point_local[point]);
-    int length = static_cast<int>(result.size());
-    MPI_Bcast(&length, 1, MPI_INT, owner, comm);
-    result.resize(length);
-    MPI_Bcast(result.data(), length, MPI_CHAR, owner, comm);
-    return result;
+  std::string point_text(const Simulation::Impl& s, Index point,
+                         const std::function<std::string(Index)>& text) override {
+    return owner_text(s.global_point, s.ghost_point, point, text);
   }
 
   void sum(std::span<ExactSum> sums) override {
@@ -384,7 +385,15 @@ class MpiCollective final : public Collective {
       MPI_Gatherv(send.data(), static_cast<int>(send.size()), MPI_DOUBLE, recv.data(), counts.data(), offsets.data(),
                   MPI_DOUBLE, 0, comm);
       if (my_rank != 0) continue;
-      double* whole_values = (DistributedAccess::impl(*whole).*(f->member)).data();
+      // The whole state's arrays are empty until the first gather (distribute() frees them).
+      Simulation::Impl& w = DistributedAccess::impl(*whole);
+      const Mesh& m = w.mesh();
+      std::vector<double>& whole_array = w.*(f->member);
+      const Index n = f->entity == Entity::point  ? m.num_points()
+                      : f->entity == Entity::zone ? m.num_zones()
+                                                  : m.num_corners();
+      if (whole_array.size() != static_cast<std::size_t>(n)) whole_array.assign(n, 0.0);
+      double* whole_values = whole_array.data();
       const double* in = recv.data();
       for (int q = 0; q < size; ++q)
         for (Index i : ids(q)) whole_values[i] = *in++;
@@ -596,17 +605,43 @@ void part_values(const Simulation::Impl& g, const StateField& f, const std::vect
   }
 }
 
-// Everything a rank needs of its part but the state arrays, which follow one message per
-// array (distribute() unpacks it in this order).
-void pack_part(Packer& out, const Simulation::Impl& g, const Part& part, const Mesh& local) {
-  out.put(part.zones);
-  out.put(part.points);
+// The large arrays of a part (its global numbers and its mesh's arrays), in the order they
+// travel: one message each, straight into the receiver's vectors, so that no packed copy of
+// them exists on either side (docs/parallel.md, "Memory").
+template <class F>
+void part_arrays(Part& part, Mesh& m, F&& each) {
+  each(part.zones), each(part.points), each(m.x), each(m.y), each(m.zone_corner_begin), each(m.corner_point);
+  each(m.corner_zone), each(m.point_corner_begin), each(m.point_corners), each(m.zone_region);
+  each(m.region_zone_begin);
+}
+
+template <class T>
+void send_array(const std::vector<T>& v, int to, MPI_Comm comm) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  const std::size_t bytes = v.size() * sizeof(T);
+  if (bytes > static_cast<std::size_t>(INT_MAX))
+    throw Error("an array of rank " + std::to_string(to) + "'s part is too large for one MPI message (" +
+                std::to_string(bytes) + " bytes); run on more ranks");
+  MPI_Send(v.data(), static_cast<int>(bytes), MPI_BYTE, to, kHaloTag, comm);
+}
+
+template <class T>
+void receive_array(std::vector<T>& v, MPI_Comm comm) {
+  MPI_Status status;
+  MPI_Probe(0, kHaloTag, comm, &status);
+  int count = 0;
+  MPI_Get_count(&status, MPI_BYTE, &count);
+  if (count % sizeof(T) != 0) throw Error("internal: an array received from rank 0 has a partial element");
+  v.resize(static_cast<std::size_t>(count) / sizeof(T));
+  MPI_Recv(v.data(), count, MPI_BYTE, 0, kHaloTag, comm, MPI_STATUS_IGNORE);
+}
+
+// The rest of a part (distribute() unpacks it in this order): the mesh's names and tags, then
+// what follows the set-up (flags, scalars, walls).
+void pack_part(Packer& out, const Simulation::Impl& g, const Mesh& local) {
   out.put(local.source);
   out.value(static_cast<std::uint64_t>(local.region_names.size()));
   for (const std::string& name : local.region_names) out.put(name);
-  out.put(local.x), out.put(local.y), out.put(local.zone_corner_begin), out.put(local.corner_point);
-  out.put(local.corner_zone), out.put(local.point_corner_begin), out.put(local.point_corners);
-  out.put(local.zone_region), out.put(local.region_zone_begin);
   out.value(static_cast<std::uint64_t>(local.tags.size()));
   for (const BoundaryTag& tag : local.tags) out.put(tag.name), out.put(tag.edges), out.put(tag.points);
   out.value(g.any_strength), out.value(g.any_burn), out.value(g.all_quads), out.value(g.edge_viscosity);
@@ -623,31 +658,25 @@ void pack_part(Packer& out, const Simulation::Impl& g, const Part& part, const M
   out.put(w.items);
 }
 
-std::string pack_part(const Simulation::Impl& g, const Part& part) {
-  const Mesh local = part_mesh(g.mesh(), part);
+std::string pack_part(const Simulation::Impl& g, const Mesh& local) {
   Packer out;
   out.counting = true;
-  pack_part(out, g, part, local);
+  pack_part(out, g, local);
   out.data.reserve(out.size);
   out.counting = false;
-  pack_part(out, g, part, local);
+  pack_part(out, g, local);
   return std::move(out.data);
 }
 
-Mesh unpack_mesh(Unpacker& in) {
-  Mesh m;
+void unpack_mesh(Unpacker& in, Mesh& m) {
   in.get(m.source);
   std::uint64_t n = 0;
   in.value(n);
   m.region_names.resize(n);
   for (std::string& name : m.region_names) in.get(name);
-  in.get(m.x), in.get(m.y), in.get(m.zone_corner_begin), in.get(m.corner_point);
-  in.get(m.corner_zone), in.get(m.point_corner_begin), in.get(m.point_corners);
-  in.get(m.zone_region), in.get(m.region_zone_begin);
   in.value(n);
   m.tags.resize(n);
   for (BoundaryTag& tag : m.tags) in.get(tag.name), in.get(tag.edges), in.get(tag.points);
-  return m;
 }
 
 }  // namespace
@@ -694,9 +723,6 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
     if (bc.kind == BoundaryKind::periodic)
       throw Error("periodic boundary '" + bc.tag + "': a distributed run cannot take periodic boundaries yet " +
                   "(docs/parallel.md); run on one rank");
-  if (problem.mesh.num_zones() < size)
-    throw Error("the mesh has " + std::to_string(problem.mesh.num_zones()) + " zones, fewer than the " +
-                std::to_string(size) + " ranks");
   // The part's problem: everything but the mesh and the energy deposits (their energy comes
   // with the copied state).
   Problem part_problem;
@@ -719,9 +745,13 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
   // copy of the mesh first, so they never hold more than the scene's mesh and their part.
   // METIS runs before the set-up (which keeps the mesh's connectivity), so that its work
   // space is handed back before the whole state is built (docs/parallel.md, "Memory").
-  std::vector<int>& owner = collective->zone_owner;
+  std::vector<int> owner;  // global zone -> rank
   on_every_rank(c, [&] {
-    if (rank == 0) owner = partition_zones(problem.mesh, size);
+    if (rank != 0) return;  // the other ranks' mesh may be an outline (load_scene_without_mesh)
+    if (problem.mesh.num_zones() < size)
+      throw Error("the mesh has " + std::to_string(problem.mesh.num_zones()) + " zones, fewer than the " +
+                  std::to_string(size) + " ranks");
+    owner = partition_zones(problem.mesh, size);
   });
   malloc_trim(0);
   std::unique_ptr<Simulation> whole;
@@ -750,27 +780,32 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
   }
   MPI_Bcast(point_owner.data(), global_points, MPI_INT, 0, c);
 
-  // Rank 0 packs each part (mesh, walls, configuration) and sends it; the last is its own.
+  // Rank 0 cuts each part (mesh, walls, configuration) and sends it; the last is its own.
   // The state arrays follow once every rank has set its part up, one message per array, so
   // that no rank holds its part's state twice (docs/parallel.md, "Memory").
   std::string packed;
   std::vector<std::vector<Index>> part_zones, part_points;  // rank 0: every part's, global
+  Part part;
   if (g) {
     part_zones.resize(size);
     part_points.resize(size);
     for (int q = size - 1; q >= 0; --q) {
       // Two layers: the corner forces of the zones around this rank's points and their
       // predicted velocities; a third for the edge viscosity's neighbours (docs/parallel.md).
-      Part part = make_part(g->mesh(), owner, q, g->edge_viscosity ? 3 : 2);
-      packed = std::string();
-      packed = pack_part(*g, part);
-      part_zones[q] = std::move(part.zones);
-      part_points[q] = std::move(part.points);
+      part = make_part(g->mesh(), owner, q, g->edge_viscosity ? 3 : 2);
+      part_problem.mesh = part_mesh(g->mesh(), part);
+      std::string().swap(packed);  // (a move from an empty string keeps the buffer)
+      packed = pack_part(*g, part_problem.mesh);
+      part_zones[q] = part.zones;
+      part_points[q] = part.points;
       if (q == 0) break;
       if (packed.size() > static_cast<std::size_t>(INT_MAX))
         throw Error("the part of rank " + std::to_string(q) + " is too large for one MPI message (" +
                     std::to_string(packed.size()) + " bytes); run on more ranks");
       MPI_Send(packed.data(), static_cast<int>(packed.size()), MPI_BYTE, q, kHaloTag, c);
+      part_arrays(part, part_problem.mesh, [&](const auto& v) { send_array(v, q, c); });
+      part = Part{};
+      part_problem.mesh = Mesh{};
     }
     malloc_trim(0);  // the parts' meshes and the other ranks' packed parts
   } else {
@@ -780,16 +815,14 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
     MPI_Get_count(&status, MPI_BYTE, &count);
     packed.resize(count);
     MPI_Recv(packed.data(), count, MPI_BYTE, 0, kHaloTag, c, MPI_STATUS_IGNORE);
+    part_arrays(part, part_problem.mesh, [&](auto& v) { receive_array(v, c); });
   }
-  Part part;
   std::string rest;  // what follows the mesh (flags, scalars, walls): read after the set-up
   {
     Unpacker in(packed);
-    in.get(part.zones);
-    in.get(part.points);
-    part_problem.mesh = unpack_mesh(in);
+    unpack_mesh(in, part_problem.mesh);
     rest = packed.substr(in.at);
-    packed = std::string();
+    std::string().swap(packed);
   }
   Unpacker in(rest);
   part.zone_local.assign(global_zones, -1);
@@ -822,7 +855,7 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
     in.get(s.wall_grid.cell_begin);
     in.get(s.wall_grid.items);
     in.expect_end();
-    rest = std::string();
+    std::string().swap(rest);
   };
   // The state: the serial set-up's, bit for bit, one array at a time. The other ranks set
   // their parts up and receive; rank 0 sets its own up last, once the whole state has dropped
@@ -844,7 +877,7 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
         part_values(*g, f, part_zones[q], part_points[q], values);
         MPI_Send(values.data(), static_cast<int>(values.size()), MPI_DOUBLE, q, kHaloTag, c);
       }
-      if (gathered(f) || g->remap) continue;
+      if (g->remap) continue;
       own.emplace_back();
       part_values(*g, f, part_zones[0], part_points[0], own.back());
       std::vector<double>().swap(DistributedAccess::impl(*whole).*f.member);
@@ -871,7 +904,7 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
       if (!present(s, f.presence)) continue;
       std::vector<double>& to = s.*f.member;
       const std::size_t expected = to.size();
-      if (gathered(f) || g->remap) {
+      if (g->remap) {
         part_values(*g, f, part_zones[0], part_points[0], to);
       } else {
         to.swap(own.at(k));
@@ -917,9 +950,6 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
   for (Index p = 0; p < np; ++p)
     if (!s.ghost_point[p]) collective->own_points.push_back(p);
   if (s.remap) append_corners(s, collective->own_zones, collective->own_corners);  // the corner masses
-  collective->zone_local = std::move(part.zone_local);
-  collective->point_owner = point_owner;
-  collective->point_local = part.point_local;
 
   // Halo lists: this rank's ghosts by owner; the owners learn them as global numbers.
   std::vector<std::vector<Index>> ghost_points(size), ghost_zones(size);
@@ -963,7 +993,7 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
     append_corners(s, n.recv_zones, n.recv_corners);
     for (int i = 0; i < recv_counts[2 * q]; ++i) n.send_points.push_back(part.point_local[recv_ids[rd[q] + i]]);
     for (int i = 0; i < recv_counts[2 * q + 1]; ++i)
-      n.send_zones.push_back(collective->zone_local[recv_ids[rd[q] + recv_counts[2 * q] + i]]);
+      n.send_zones.push_back(part.zone_local[recv_ids[rd[q] + recv_counts[2 * q] + i]]);
     append_corners(s, n.send_zones, n.send_corners);
     n.send.resize(per_point * n.send_points.size() + per_zone * n.send_zones.size() +
                   per_corner * n.send_corners.size());
@@ -992,6 +1022,9 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
     collective->whole = std::move(whole);
   }
   whole.reset();
+  part = Part{};
+  owner = {};
+  point_owner = {};
   // ALE: the part's own remap (built by its set-up on the part's mesh) gives way to the
   // distributed one, which runs the whole problem's on rank 0.
   if (s.remap) s.remap = std::make_shared<DistributedRemap>(s, *collective);

@@ -350,7 +350,11 @@ void read_boundaries(Section& root, const Mesh& mesh, double t_end, Problem& pro
 }  // namespace
 }  // namespace scene_detail
 
-Scene load_scene(const std::string& path, const std::vector<std::pair<std::string, std::string>>& overrides) {
+namespace {
+
+// load_scene, or with `outline` load_scene_without_mesh.
+Scene read_scene(const std::string& path, const std::vector<std::pair<std::string, std::string>>& overrides,
+                 Mesh* outline) {
   using namespace scene_detail;
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) throw Error(path + ": scene file not found; check the path");
@@ -384,7 +388,12 @@ Scene load_scene(const std::string& path, const std::vector<std::pair<std::strin
 
   auto mesh = root.subtable("mesh");
   if (!mesh) root.fail("mesh", "missing: every scene needs a [mesh]", "add [mesh] with file or generator");
-  problem.mesh = read_mesh_section(*mesh, path, scene.notes);
+  if (outline) {
+    problem.mesh = std::move(*outline);
+    problem.mesh.region_zone_begin.assign(problem.mesh.region_names.size() + 1, 0);
+  } else {
+    problem.mesh = read_mesh_section(*mesh, path, scene.notes);
+  }
 
   auto materials = root.table_array("material");
   if (materials.empty()) root.fail("material", "missing: no [[material]]", "add one [[material]] per material");
@@ -422,6 +431,7 @@ Scene load_scene(const std::string& path, const std::vector<std::pair<std::strin
   if (auto verification = root.subtable("verification"))
     read_verification_section(*verification, problem, source_context, control, scene.verification);
   root.finish();
+  if (outline) return scene;  // no zones to validate or review: rank 0 did (docs/parallel.md)
 
   try {
     problem.validate();
@@ -430,6 +440,22 @@ Scene load_scene(const std::string& path, const std::vector<std::pair<std::strin
   }
   review_scene(document, scene);
   return scene;
+}
+
+}  // namespace
+
+Scene load_scene(const std::string& path, const std::vector<std::pair<std::string, std::string>>& overrides) {
+  return read_scene(path, overrides, nullptr);
+}
+
+Scene load_scene_without_mesh(const std::string& path,
+                              const std::vector<std::pair<std::string, std::string>>& overrides, Mesh outline) {
+  outline.zone_corner_begin.assign(1, 0);
+  outline.point_corner_begin.assign(1, 0);
+  outline.x.clear(), outline.y.clear(), outline.corner_point.clear(), outline.corner_zone.clear();
+  outline.point_corners.clear(), outline.zone_region.clear();
+  for (BoundaryTag& tag : outline.tags) tag.edges.clear(), tag.points.clear();
+  return read_scene(path, overrides, &outline);
 }
 
 }  // namespace stagger

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <numeric>
 #include <sstream>
-#include <tuple>
 
 #include "mesh/polygon.hpp"
 #include "stagger/error.hpp"
@@ -140,37 +139,57 @@ FrontCrossing front_crossing(const Mesh& mesh, std::span<const double> x, std::s
                              const std::function<double(double, double)>& coordinate, double min_position) {
   if (field.size() != static_cast<std::size_t>(mesh.num_zones()))
     throw Error("front_crossing: the field does not have one value per zone");
-  const auto centres = zone_centres(mesh, x, y);
   std::vector<double> position(field.size());
-  for (std::size_t z = 0; z < field.size(); ++z) position[z] = coordinate(centres[0][z], centres[1][z]);
-  // Edges as (lower point, higher point, zone); an interior edge appears twice.
-  std::vector<std::tuple<Index, Index, Index>> edges;
-  edges.reserve(mesh.num_corners());
-  for (Index z = 0; z < mesh.num_zones(); ++z) {
-    const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
-    for (Index c = begin; c < end; ++c) {
-      const Index a = mesh.corner_point[c], b = mesh.corner_point[c + 1 < end ? c + 1 : begin];
-      edges.emplace_back(std::min(a, b), std::max(a, b), z);
-    }
+  {
+    const auto centres = zone_centres(mesh, x, y);
+    for (std::size_t z = 0; z < field.size(); ++z) position[z] = coordinate(centres[0][z], centres[1][z]);
   }
-  std::sort(edges.begin(), edges.end());
+  // Edges (a, b), a < b, in ascending (a, b) order, each with its zones in ascending order:
+  // point a's edges to higher points from its own corners (no list of every edge, which a
+  // 10^6-zone mesh makes 48 MB; docs/parallel.md, "Memory"). An interior edge has two zones.
+  // A mesh built by hand may lack the point-to-corner lists: then they are made here.
+  const auto points = static_cast<std::size_t>(mesh.num_points());
+  std::span<const Index> point_begin = mesh.point_corner_begin, point_corners = mesh.point_corners;
+  std::vector<Index> made_begin, made_corners;
+  if (point_begin.size() != points + 1 || point_corners.size() != mesh.corner_point.size()) {
+    made_begin.assign(points + 1, 0);
+    for (Index p : mesh.corner_point) ++made_begin[static_cast<std::size_t>(p) + 1];
+    for (std::size_t p = 0; p < points; ++p) made_begin[p + 1] += made_begin[p];
+    made_corners.resize(mesh.corner_point.size());
+    std::vector<Index> next(made_begin.begin(), made_begin.end() - 1);
+    for (Index c = 0; c < mesh.num_corners(); ++c) made_corners[next[mesh.corner_point[c]]++] = c;
+    point_begin = made_begin, point_corners = made_corners;
+  }
   FrontCrossing front;
   double sum = 0;
-  for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
-    const auto [a0, b0, z0] = edges[i];
-    const auto [a1, b1, z1] = edges[i + 1];
-    if (a0 != a1 || b0 != b1) continue;
-    const Index inner = position[z0] <= position[z1] ? z0 : z1;
-    const Index outer = inner == z0 ? z1 : z0;
-    if (field[inner] >= threshold && field[outer] < threshold) {
-      const double fraction = (field[inner] - threshold) / (field[inner] - field[outer]);
-      const double crossing = position[inner] + fraction * (position[outer] - position[inner]);
-      if (crossing >= min_position) {
-        sum += crossing;
-        ++front.crossings;
-      }
+  std::vector<std::pair<Index, Index>> around;  // (b, zone) of point a's edges
+  for (Index a = 0; a < mesh.num_points(); ++a) {
+    around.clear();
+    for (Index j = point_begin[a]; j < point_begin[a + 1]; ++j) {
+      const Index c = point_corners[j], z = mesh.corner_zone[c];
+      const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
+      const Index next = mesh.corner_point[c + 1 < end ? c + 1 : begin];
+      const Index prev = mesh.corner_point[c > begin ? c - 1 : end - 1];
+      if (next > a) around.emplace_back(next, z);
+      if (prev > a) around.emplace_back(prev, z);
     }
-    ++i;  // the pair is consumed
+    std::sort(around.begin(), around.end());
+    for (std::size_t i = 0; i + 1 < around.size(); ++i) {
+      const auto [b0, z0] = around[i];
+      const auto [b1, z1] = around[i + 1];
+      if (b0 != b1) continue;
+      const Index inner = position[z0] <= position[z1] ? z0 : z1;
+      const Index outer = inner == z0 ? z1 : z0;
+      if (field[inner] >= threshold && field[outer] < threshold) {
+        const double fraction = (field[inner] - threshold) / (field[inner] - field[outer]);
+        const double crossing = position[inner] + fraction * (position[outer] - position[inner]);
+        if (crossing >= min_position) {
+          sum += crossing;
+          ++front.crossings;
+        }
+      }
+      ++i;  // the pair is consumed
+    }
   }
   if (front.crossings > 0) front.position = sum / front.crossings;
   return front;

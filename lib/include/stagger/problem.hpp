@@ -99,7 +99,9 @@ struct HydroOptions {
   double hourglass_coefficient = 2.0;  ///< Q (subzonal: merit factor); 0 turns hourglass control off
   StressUpdate stress_update = StressUpdate::rate;
   bool fresh_predictor = false;  ///< evaluate f^n afresh each cycle (reference option)
-  double volume_limit = 0.1;     ///< f_A
+  /// Compensated (two-sum) accumulation of positions and velocities (docs/algorithm.md §20).
+  bool compensated_update = false;
+  double volume_limit = 0.1;  ///< f_A
   double dt_growth = 1.1;
   double dt_init = 0;   ///< 0 = the CFL value at t = 0
   double dt_max = 0;    ///< 0 = none

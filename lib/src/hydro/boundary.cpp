@@ -9,6 +9,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "hydro/kernels/compensated.hpp"
 #include "hydro/kernels/geometry.hpp"
 #include "stagger/error.hpp"
 
@@ -211,6 +212,7 @@ Index step_wall_crossing(Simulation::Impl& s, double dt) {
   float* budget = c.budget.data();
   const double *x = s.x.data(), *y = s.y.data(), *vx = s.vx.data(), *vy = s.vy.data();
   const double *ux = s.vx_new.data(), *uy = s.vy_new.data();
+  const double *x_lo = s.x_lo.empty() ? nullptr : s.x_lo.data(), *y_lo = s.y_lo.empty() ? nullptr : s.y_lo.data();
   // x^{n+1} = x^n + dt v_bar, as Z2 and the commit form it.
   const double half_dt = dt * 0.5;
   if (!fresh) {
@@ -219,7 +221,8 @@ Index step_wall_crossing(Simulation::Impl& s, double dt) {
     // Branch-free, so that it vectorises.
 #pragma omp parallel for schedule(static) if (np > 20000)
     for (Index p = 0; p < np; ++p) {
-      const double x1 = x[p] + half_dt * (vx[p] + ux[p]), y1 = y[p] + half_dt * (vy[p] + uy[p]);
+      const double x1 = advanced(x[p], half_dt * (vx[p] + ux[p]), x_lo, p);
+      const double y1 = advanced(y[p], half_dt * (vy[p] + uy[p]), y_lo, p);
       const double left = budget[p] - (std::abs(x1 - x[p]) + std::abs(y1 - y[p]));
       // Rounded down: a float rounds by at most 2^-24 relative.
       budget[p] = static_cast<float>(left - std::abs(left) * 0x1p-22);
@@ -231,7 +234,8 @@ Index step_wall_crossing(Simulation::Impl& s, double dt) {
   for (Index p = 0; p < np; ++p) {
     if (!fresh && budget[p] > 0) continue;
     if (!s.ghost_point.empty() && s.ghost_point[p]) continue;  // a distributed run: this rank's points
-    const double x1 = x[p] + half_dt * (vx[p] + ux[p]), y1 = y[p] + half_dt * (vy[p] + uy[p]);
+    const double x1 = advanced(x[p], half_dt * (vx[p] + ux[p]), x_lo, p);
+    const double y1 = advanced(y[p], half_dt * (vy[p] + uy[p]), y_lo, p);
     if (crossed_wall(s, p, x[p], y[p], x1, y1)) first = std::min(first, p);
     budget[p] = round_down(wall_clearance(s, p, x1, y1) - slack - 1e-12 * (std::abs(x1) + std::abs(y1)));
   }
@@ -246,19 +250,23 @@ Index find_wall_crossing(const Simulation::Impl& s, double dt) {
   const Index np = s.mesh().num_points();
   const double *x = s.x.data(), *y = s.y.data(), *vx = s.vx.data(), *vy = s.vy.data();
   const double *ux = s.vx_new.data(), *uy = s.vy_new.data();
+  const double *x_lo = s.x_lo.empty() ? nullptr : s.x_lo.data(), *y_lo = s.y_lo.empty() ? nullptr : s.y_lo.data();
   Index first = np;
 #pragma omp parallel for schedule(static) reduction(min : first) if (np > 20000)
   for (Index p = 0; p < np; ++p) {
     if (!s.ghost_point.empty() && s.ghost_point[p]) continue;  // a distributed run: this rank's points
     // x^{n+1} = x^n + dt v_bar, as Z2 and the commit form it.
-    const double x1 = x[p] + dt * 0.5 * (vx[p] + ux[p]), y1 = y[p] + dt * 0.5 * (vy[p] + uy[p]);
+    const double x1 = advanced(x[p], dt * 0.5 * (vx[p] + ux[p]), x_lo, p);
+    const double y1 = advanced(y[p], dt * 0.5 * (vy[p] + uy[p]), y_lo, p);
     if (crossed_wall(s, p, x[p], y[p], x1, y1)) first = std::min(first, p);
   }
   return first < np ? first : -1;
 }
 
 std::string describe_wall_crossing(const Simulation::Impl& s, Index p, double dt) {
-  const double x1 = s.x[p] + dt * 0.5 * (s.vx[p] + s.vx_new[p]), y1 = s.y[p] + dt * 0.5 * (s.vy[p] + s.vy_new[p]);
+  const double *x_lo = s.x_lo.empty() ? nullptr : s.x_lo.data(), *y_lo = s.y_lo.empty() ? nullptr : s.y_lo.data();
+  const double x1 = advanced(s.x[p], dt * 0.5 * (s.vx[p] + s.vx_new[p]), x_lo, p);
+  const double y1 = advanced(s.y[p], dt * 0.5 * (s.vy[p] + s.vy_new[p]), y_lo, p);
   const WallEdge* w = crossed_wall(s, p, s.x[p], s.y[p], x1, y1);
   if (!w) return {};
   const Mesh& mesh = s.mesh();
@@ -438,6 +446,21 @@ void apply_constraints(const Simulation::Impl& s, std::span<double> vx, std::spa
       const double det = c.nx[0] * c.ny[1] - c.ny[0] * c.nx[1];
       vx[p] = (g[0] * c.ny[1] - c.ny[0] * g[1]) / det;
       vy[p] = (c.nx[0] * g[1] - g[0] * c.nx[1]) / det;
+    }
+  }
+}
+
+void constrain_low_parts(const Simulation::Impl& s, std::span<double> lo_x, std::span<double> lo_y) {
+  for (const auto& group : s.periodic_groups)
+    for (Index p : group) lo_x[p] = lo_y[p] = 0;  // the group's mean velocity is a new value
+  for (const auto& c : s.constraints) {
+    const Index p = c.point;
+    if (c.count == 1) {
+      const double normal = lo_x[p] * c.nx[0] + lo_y[p] * c.ny[0];
+      lo_x[p] -= normal * c.nx[0];
+      lo_y[p] -= normal * c.ny[0];
+    } else {
+      lo_x[p] = lo_y[p] = 0;
     }
   }
 }

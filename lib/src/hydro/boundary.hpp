@@ -14,6 +14,9 @@ void setup_boundaries(Simulation::Impl& s);
 // Enforces periodic groups (mass-weighted common velocity) and then the normal constraints
 // at time t on (vx, vy). Returns nothing; the caller accounts for the work.
 void apply_constraints(const Simulation::Impl& s, std::span<double> vx, std::span<double> vy, double t);
+// The same constraints on the low parts of a compensated velocity (docs/algorithm.md §20):
+// no normal component on a one-direction constraint, zero where the velocity is set whole.
+void constrain_low_parts(const Simulation::Impl& s, std::span<double> lo_x, std::span<double> lo_y);
 
 // Sets (fx, fy) to the applied-pressure forces at time t on the positions (x, y): per unit
 // depth, or in rz per radian (the geometry policy's scale_surface_forces; docs/algorithm.md §19).

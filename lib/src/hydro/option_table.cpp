@@ -285,6 +285,9 @@ const OptionTable<HydroOptions>& numerics_option_table() {
           choice<&O::stress_update>("stress_update", {"rate", "objective"},
                                     "deviatoric stress update: rate form or objective Hughes-Winget (§7)"),
           flag<&O::fresh_predictor>("fresh_predictor", "evaluate the predictor forces f^n afresh each cycle (§1)"),
+          flag<&O::compensated_update>("compensated_update",
+                                       "compensated (two-sum) accumulation of the point positions and velocities: "
+                                       "no round-off drift over many cycles (§20)"),
           number<&O::volume_limit>("volume_limit", {0, 1, true, false}, "-",
                                    "f_A: largest relative area change per step (§9)"),
           number<&O::dt_growth>("dt_growth", at_least(1), "-", "largest growth of dt from one step to the next (§9)"),

@@ -210,7 +210,7 @@ std::vector<Simulation::OutputField> Simulation::output_fields() const {
 // ---- checkpoints: the state table's checkpointed arrays in the binary format of
 // io/byte_stream.hpp, behind the physics digest (docs/output.md, "Checkpoints") ----
 namespace {
-constexpr std::string_view kBlobMagic = "STGCKPT3";  // the last character is the blob's version
+constexpr std::string_view kBlobMagic = "STGCKPT4";  // the last character is the blob's version
 }  // namespace
 
 std::string Simulation::checkpoint() const {

@@ -66,6 +66,8 @@ struct Simulation::Impl {
   std::vector<double> x_half, y_half;  // only when strength, edge q or external forces need them
   std::vector<double> vx, vy, vx_new, vy_new, vx_star, vy_star;
   std::vector<double> point_mass;
+  // Low parts of x and v (numerics.compensated_update only, docs/algorithm.md §20).
+  std::vector<double> x_lo, y_lo, vx_lo, vy_lo, vx_lo_new, vy_lo_new;
   // Zones.
   std::vector<double> zone_mass, area, rho, e, e_new, p, q, c;  // c = full sound speed C
   std::vector<double> rho_half, c_half;                         // edge viscosity only

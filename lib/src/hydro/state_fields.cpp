@@ -38,6 +38,14 @@ const std::array kFields = {
     StateField{"ext_fy", &I::ext_fy, Entity::point, Presence::external},
     StateField{"src_fx", &I::src_fx, Entity::point, Presence::momentum_source},
     StateField{"src_fy", &I::src_fy, Entity::point, Presence::momentum_source},
+    // Low parts of the compensated update: the state of the accumulation, so checkpointed and
+    // exchanged; a remap moves the points and sets them to zero (docs/algorithm.md §20).
+    StateField{"x_lo", &I::x_lo, Entity::point, Presence::compensated, kC},
+    StateField{"y_lo", &I::y_lo, Entity::point, Presence::compensated, kC},
+    StateField{"vx_lo", &I::vx_lo, Entity::point, Presence::compensated, kC, 0.0, &I::vx_lo_new},
+    StateField{"vy_lo", &I::vy_lo, Entity::point, Presence::compensated, kC, 0.0, &I::vy_lo_new},
+    StateField{"vx_lo_new", &I::vx_lo_new, Entity::point, Presence::compensated},
+    StateField{"vy_lo_new", &I::vy_lo_new, Entity::point, Presence::compensated},
     StateField{"axis_ax", &I::axis_ax, Entity::point, Presence::rz, kC},
     StateField{"axis_ay", &I::axis_ay, Entity::point, Presence::rz, kC},
     // Zones.
@@ -117,6 +125,8 @@ bool present(const Simulation::Impl& s, Presence presence) {
       return s.problem.ale.mode != AleMode::lagrangian;
     case Presence::rz:
       return s.problem.options.geometry == CoordinateSystem::rz;
+    case Presence::compensated:
+      return s.problem.options.compensated_update;
   }
   return false;
 }

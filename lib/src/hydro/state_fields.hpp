@@ -25,6 +25,7 @@ enum class Presence {
   subzonal,         // numerics.hourglass = "subzonal" or "subzonal_triangles"
   ale,              // ale.mode is not "lagrangian"
   rz,               // numerics.geometry = "rz"
+  compensated,      // numerics.compensated_update
 };
 
 // What an array takes part in (bit flags).

@@ -20,6 +20,7 @@
 #include "hydro/boundary.hpp"
 #include "hydro/collective.hpp"
 #include "hydro/exact_sum.hpp"
+#include "hydro/kernels/compensated.hpp"
 #include "hydro/kernels/geometry.hpp"
 #include "hydro/kernels/points.hpp"
 #include "hydro/kernels/rz.hpp"
@@ -336,20 +337,23 @@ void Simulation::Impl::predict_velocity(double dt, double t_half) {
 }
 
 // P2 (step 6): v_free = v^n + dt (F^{n+1/2} + F_ext)/M_p; v^{n+1} = constraints(v_free) at
-// t^{n+1}, keeping v_free of the constrained points for the constraint work.
+// t^{n+1}, keeping v_free of the constrained points for the constraint work. A compensated
+// update (docs/algorithm.md §20) writes the low parts of v^{n+1}, constrained alike.
 void Simulation::Impl::correct_velocity(double dt, double t_new) {
   const bool external = has_external;
+  const VelocityLowParts lo{data_or_null(vx_lo), data_or_null(vy_lo), data_or_null(vx_lo_new), data_or_null(vy_lo_new)};
   correct_points(point_input(*this), mesh().num_points(), dt, external ? ext_fx.data() : nullptr,
                  external ? ext_fy.data() : nullptr, external ? data_or_null(src_fx) : nullptr,
-                 external ? data_or_null(src_fy) : nullptr, vx_new.data(), vy_new.data());
+                 external ? data_or_null(src_fy) : nullptr, lo, vx_new.data(), vy_new.data());
   if (rz)
     move_axis_points(axis_points.size(), axis_points.data(), dt, axis_ax.data(), axis_ay.data(), vx.data(), vy.data(),
-                     vx_new.data(), vy_new.data());
+                     vx_new.data(), vy_new.data(), lo);
   for (std::size_t i = 0; i < constrained.size(); ++i) {
     free_vx[i] = vx_new[constrained[i]];
     free_vy[i] = vy_new[constrained[i]];
   }
   apply_constraints(*this, vx_new, vy_new, t_new);
+  if (lo.x) constrain_low_parts(*this, vx_lo_new, vy_lo_new);
 }
 
 // Z2 (steps 7, 8, 9) over every range; on success the next dt candidate is in dt_next.
@@ -358,6 +362,8 @@ std::int64_t Simulation::Impl::end_of_step(double dt, double t_new) {
                         corner_point.data(),
                         x.data(),
                         y.data(),
+                        data_or_null(x_lo),
+                        data_or_null(y_lo),
                         data_or_null(x_half),
                         data_or_null(y_half),
                         vx.data(),
@@ -422,8 +428,9 @@ void Simulation::Impl::account_boundary_work(double dt) {
 
 // Commit: x^{n+1} = x^n + dt v_bar (the expression of Z2), then the new state replaces the old.
 void Simulation::Impl::commit(double dt) {
-  commit_positions(mesh().num_points(), dt, vx.data(), vy.data(), vx_new.data(), vy_new.data(), x.data(), y.data());
-  swap_new_into_current(*this);  // v, e, S, plastic strain, burn (the state table)
+  commit_positions(mesh().num_points(), dt, vx.data(), vy.data(), vx_new.data(), vy_new.data(), x.data(), y.data(),
+                   data_or_null(x_lo), data_or_null(y_lo));
+  swap_new_into_current(*this);  // v, e, S, plastic strain, burn, low parts (the state table)
   have_previous_forces = true;
 }
 
@@ -579,6 +586,8 @@ void Simulation::Impl::step(double t_stop) {
   if (remap) {
     RemapState state{mesh(), t, cycle, x, y, vx, vy, e, sxx, syy, sxy, zone_mass, point_mass, area};
     if (remap->remap(state)) {
+      // The remap placed the points and velocities anew: no round-off left to carry (§20).
+      for (auto* lo : {&x_lo, &y_lo, &vx_lo, &vy_lo}) std::fill(lo->begin(), lo->end(), 0.0);
       // The built-in ALE remap charges its moves to the wall check's budgets (ale_remap.cpp):
       // they stay valid, and the next step tests only the points near a wall.
       const bool charged = std::exchange(wall_clearance.charged, false);
@@ -601,8 +610,8 @@ Index Simulation::Impl::find_tangled_zone(double dt) {
     v.n = n;
     for (int k = 0; k < n; ++k) {
       const Index p = corner_point[b + k];
-      v.x[k] = x[p] + dt * 0.5 * (vx[p] + vx_new[p]);
-      v.y[k] = y[p] + dt * 0.5 * (vy[p] + vy_new[p]);
+      v.x[k] = advanced(x[p], dt * 0.5 * (vx[p] + vx_new[p]), data_or_null(x_lo), p);
+      v.y[k] = advanced(y[p], dt * 0.5 * (vy[p] + vy_new[p]), data_or_null(y_lo), p);
     }
     double ca[kMaxZoneVertices];
     const double smallest_corner = Geometry::corner_areas(v, ca);

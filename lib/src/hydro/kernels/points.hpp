@@ -3,6 +3,7 @@
 // the commit of the positions, and the work of the boundary and external forces. Each point
 // gathers its corners' forces in a fixed order (corner_forces.hpp).
 #include "hydro/exact_sum.hpp"
+#include "hydro/kernels/compensated.hpp"
 #include "hydro/kernels/corner_forces.hpp"
 #include "hydro/kernels/zone_status.hpp"
 
@@ -43,28 +44,53 @@ inline void add_external_velocity(Index np, double h, const double* mass, const 
   }
 }
 
-// P2: v_free = v^n + dt (F + F_ext + F_src) / M_p (ext and src may be null).
+// P2: v_free = v^n + dt (F + F_ext + F_src) / M_p (ext and src may be null); compensated, v^n
+// + (dt F / M_p + lo) with its round-off as the new low part.
 inline void correct_points(const PointInput& in, Index np, double dt, const double* ext_fx, const double* ext_fy,
-                           const double* src_fx, const double* src_fy, double* vx_new, double* vy_new) {
+                           const double* src_fx, const double* src_fy, const VelocityLowParts& lo, double* vx_new,
+                           double* vy_new) {
   const double *vx = in.vx, *vy = in.vy, *M = in.mass;
   const bool external = ext_fx != nullptr, sources = src_fx != nullptr;
-#pragma omp parallel for schedule(static) if (np > kParallelMin)
-  for (Index p = 0; p < np; ++p) {
-    double Fx, Fy;
+  const auto force = [&](Index p, double& Fx, double& Fy) {
     gather_point_sum(in.point_corner_begin, in.point_corners, in.fx, in.fy, p, Fx, Fy);
     if (external) {
       Fx += ext_fx[p] + (sources ? src_fx[p] : 0.0);
       Fy += ext_fy[p] + (sources ? src_fy[p] : 0.0);
     }
+  };
+  if (lo.x) {  // one loop per variant: no test per point
+#pragma omp parallel for schedule(static) if (np > kParallelMin)
+    for (Index p = 0; p < np; ++p) {
+      double Fx, Fy;
+      force(p, Fx, Fy);
+      vx_new[p] = two_sum(vx[p], dt * Fx / M[p] + lo.x[p], lo.x_new[p]);
+      vy_new[p] = two_sum(vy[p], dt * Fy / M[p] + lo.y[p], lo.y_new[p]);
+    }
+    return;
+  }
+#pragma omp parallel for schedule(static) if (np > kParallelMin)
+  for (Index p = 0; p < np; ++p) {
+    double Fx, Fy;
+    force(p, Fx, Fy);
     vx_new[p] = vx[p] + dt * Fx / M[p];
     vy_new[p] = vy[p] + dt * Fy / M[p];
   }
 }
 
 // x^{n+1} = x^n + dt v_bar, v_bar = (v^n + v^{n+1})/2: the expression Z2 used for the end
-// geometry, so the committed positions are the ones checked.
+// geometry, so the committed positions are the ones checked. With low parts (x_lo, y_lo not
+// null; docs/algorithm.md §20) the same rounded sum x^n + (dt v_bar + lo), whose round-off
+// becomes the new low part.
 inline void commit_positions(Index np, double dt, const double* vx, const double* vy, const double* ux,
-                             const double* uy, double* x, double* y) {
+                             const double* uy, double* x, double* y, double* x_lo, double* y_lo) {
+  if (x_lo) {
+#pragma omp parallel for schedule(static) if (np > kParallelMin)
+    for (Index p = 0; p < np; ++p) {
+      x[p] = two_sum(x[p], dt * 0.5 * (vx[p] + ux[p]) + x_lo[p], x_lo[p]);
+      y[p] = two_sum(y[p], dt * 0.5 * (vy[p] + uy[p]) + y_lo[p], y_lo[p]);
+    }
+    return;
+  }
 #pragma omp parallel for schedule(static) if (np > kParallelMin)
   for (Index p = 0; p < np; ++p) {
     x[p] = x[p] + dt * 0.5 * (vx[p] + ux[p]);

@@ -2,6 +2,7 @@
 // The axisymmetric (r, z) parts of the step (docs/algorithm.md §19): the hoop terms of the
 // stress, the point weights that turn area-weighted ("planar") corner forces into true
 // ones, and the motion of the massless axis points. Header-only, over explicit inputs.
+#include "hydro/kernels/compensated.hpp"
 #include "hydro/kernels/geometry.hpp"
 #include "hydro/kernels/strength.hpp"
 #include "hydro/kernels/zone_status.hpp"
@@ -85,13 +86,21 @@ inline void weight_rz_corner_forces(Index nc, const Index* corner_point, const d
   }
 }
 
-// u = v + h a at the axis points (their area-weighted acceleration; F / M is 0 / 0 there).
+// u = v + h a at the axis points (their area-weighted acceleration; F / M is 0 / 0 there);
+// with low parts (the corrector of a compensated update, docs/algorithm.md §20) v + (h a +
+// lo), its round-off the new low part.
 inline void move_axis_points(std::size_t count, const Index* points, double h, const double* ax, const double* ay,
-                             const double* vx, const double* vy, double* ux, double* uy) {
+                             const double* vx, const double* vy, double* ux, double* uy,
+                             const VelocityLowParts& lo = {}) {
   for (std::size_t i = 0; i < count; ++i) {
     const Index p = points[i];
-    ux[p] = vx[p] + h * ax[p];
-    uy[p] = vy[p] + h * ay[p];
+    if (lo.x) {
+      ux[p] = two_sum(vx[p], h * ax[p] + lo.x[p], lo.x_new[p]);
+      uy[p] = two_sum(vy[p], h * ay[p] + lo.y[p], lo.y_new[p]);
+    } else {
+      ux[p] = vx[p] + h * ax[p];
+      uy[p] = vy[p] + h * ay[p];
+    }
   }
 }
 

@@ -8,6 +8,7 @@
 
 #include "eos/eos_kernels.hpp"
 #include "hydro/kernels/burn.hpp"
+#include "hydro/kernels/compensated.hpp"
 #include "hydro/kernels/energy.hpp"
 #include "hydro/kernels/geometry.hpp"
 #include "hydro/kernels/rz.hpp"
@@ -92,6 +93,7 @@ struct ZoneEndInput {
   const Index* zone_corner_begin;
   const Index* corner_point;
   const double *x, *y;            // x^n
+  const double *x_lo, *y_lo;      // their low parts (compensated update, docs/algorithm.md §20; else null)
   const double *x_half, *y_half;  // x^{n+1/2} (stored when strength or an energy source need it)
   const double *vx, *vy;          // v^n
   const double *ux, *uy;          // v^{n+1}
@@ -123,6 +125,7 @@ std::int64_t finish_zones(const ZoneEndInput& input, const HydroOptions& o, cons
   const Index* cb = in.zone_corner_begin;
   const Index* cp = in.corner_point;
   const double *vx = in.vx, *vy = in.vy, *ux = in.ux, *uy = in.uy, *x = in.x, *y = in.y;
+  const double *x_lo = in.x_lo, *y_lo = in.y_lo;
   const double dt = in.dt;
   const bool objective = o.stress_update == StressUpdate::objective;
   std::int64_t failure = kNoFailure;
@@ -169,10 +172,18 @@ std::int64_t finish_zones(const ZoneEndInput& input, const HydroOptions& o, cons
       // x^{n+1} = x^n + dt v_bar, formed here and committed after the whole step succeeds.
       ZoneVertices ve;
       ve.n = n;
-      for (int k = 0; k < n; ++k) {
-        const Index p = cp[b + k];
-        ve.x[k] = x[p] + dt * 0.5 * (vx[p] + ux[p]);
-        ve.y[k] = y[p] + dt * 0.5 * (vy[p] + uy[p]);
+      if (x_lo) {  // compensated (§20): the low parts join the step
+        for (int k = 0; k < n; ++k) {
+          const Index p = cp[b + k];
+          ve.x[k] = x[p] + (dt * 0.5 * (vx[p] + ux[p]) + x_lo[p]);
+          ve.y[k] = y[p] + (dt * 0.5 * (vy[p] + uy[p]) + y_lo[p]);
+        }
+      } else {
+        for (int k = 0; k < n; ++k) {
+          const Index p = cp[b + k];
+          ve.x[k] = x[p] + dt * 0.5 * (vx[p] + ux[p]);
+          ve.y[k] = y[p] + dt * 0.5 * (vy[p] + uy[p]);
+        }
       }
       double burn = 1;
       if (m.burn) {

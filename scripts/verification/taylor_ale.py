@@ -26,7 +26,7 @@ import sys
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 SCENES = os.path.join(ROOT, "apps", "scenes")
-ALE_800 = ["ale.mode=ale", "ale.rezone=reference_jacobian", "ale.remap_every=1"]
+ALE_800 = ["ale.mode=ale", "ale.rezone=reference_jacobian", "ale.size_weight=1", "ale.remap_every=1"]
 
 # name -> (label, scene, overrides)
 RUNS = {

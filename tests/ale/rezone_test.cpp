@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <random>
 #include <string>
@@ -112,6 +113,81 @@ TEST(Rezone, ReferenceJacobianKeepsAGradedMesh) {
   const Rezoned w = run_rezone(mesh, rc, o, {mesh.x, mesh.y});
   EXPECT_GT(w.result.max_displacement, 1e-3);
   EXPECT_EQ(crossing_zones(mesh, w.pos.x, w.pos.y), 0);
+}
+
+// Smallest and largest zone area relative to the reference zone's.
+std::pair<double, double> relative_area_range(const Mesh& mesh, const std::vector<double>& x,
+                                              const std::vector<double>& y) {
+  const auto area = [&](Index z, const std::vector<double>& px, const std::vector<double>& py) {
+    double a = 0;
+    const Index b = mesh.zone_corner_begin[z], e = mesh.zone_corner_begin[z + 1];
+    for (Index c = b; c < e; ++c) {
+      const Index p = mesh.corner_point[c], q = mesh.corner_point[c + 1 == e ? b : c + 1];
+      a += px[p] * py[q] - px[q] * py[p];
+    }
+    return 0.5 * a;
+  };
+  double lo = std::numeric_limits<double>::infinity(), hi = 0;
+  for (Index z = 0; z < mesh.num_zones(); ++z) {
+    const double r = area(z, x, y) / area(z, mesh.x, mesh.y);
+    lo = std::min(lo, r);
+    hi = std::max(hi, r);
+  }
+  return {lo, hi};
+}
+
+TEST(Rezone, SizeTermKeepsZonesOfAThinningSheetLong) {
+  // reference_jacobian's shape functional is scale-invariant: in a sheet that thins out (here
+  // a square squeezed into a wedge, 1 high at x = 0 and 0.1 at x = 1) it makes the zones
+  // square again by shortening them toward the thin end, so they shrink with the sheet's
+  // thickness (the tip of a Taylor bar's foot, docs/ale.md). The size term (size_weight)
+  // pulls each zone's area relative to its reference area toward its neighbours', so the
+  // zones keep more of their length.
+  const int n = 16;
+  const Mesh mesh = rectangle_mesh(n, n);
+  const RezoneConstraints rc = make_rezone_constraints(mesh, {});
+  RezoneOptions o;
+  o.method = RezoneMethod::reference_jacobian;
+  o.relaxation = 1;
+  o.iterations = 4;
+  o.size_weight = 1;
+  // The reference mesh (relative size 1 everywhere) is a fixed point.
+  const Rezoned at_rest = run_rezone(mesh, rc, o, {mesh.x, mesh.y});
+  EXPECT_LE(at_rest.result.max_displacement, 1e-14);
+  Positions lag{mesh.x, mesh.y};
+  for (Index p = 0; p < mesh.num_points(); ++p) lag.y[p] = mesh.y[p] * (1 - 0.9 * mesh.x[p]);
+  // Rezones in a row, each from the last one's mesh (a point moves at most max_move of its
+  // shortest edge per rezone).
+  const auto repeated = [&](double size_weight) {
+    o.size_weight = size_weight;
+    Rezoned r{lag, {}};
+    for (int k = 0; k < 30; ++k) r = run_rezone(mesh, rc, o, r.pos);
+    return r;
+  };
+  const Rezoned shape = repeated(0);
+  const Rezoned sized = repeated(1);
+  const auto [lag_lo, lag_hi] = relative_area_range(mesh, lag.x, lag.y);
+  const auto [shape_lo, shape_hi] = relative_area_range(mesh, shape.pos.x, shape.pos.y);
+  const auto [sized_lo, sized_hi] = relative_area_range(mesh, sized.pos.x, sized.pos.y);
+  std::printf("relative area: lagrangian %.4g..%.4g, shapes only %.4g..%.4g, size term %.4g..%.4g\n", lag_lo, lag_hi,
+              shape_lo, shape_hi, sized_lo, sized_hi);
+  EXPECT_EQ(crossing_zones(mesh, shape.pos.x, shape.pos.y), 0);
+  EXPECT_EQ(crossing_zones(mesh, sized.pos.x, sized.pos.y), 0);
+  EXPECT_GT(sized_lo, 1.5 * shape_lo);
+  EXPECT_LT(sized_hi / sized_lo, 0.7 * (shape_hi / shape_lo));
+  // Points of the straight sides stay on them: the bottom and the left wall bitwise, the
+  // sloped top on its line.
+  for (Index p = 0; p < mesh.num_points(); ++p) {
+    if (mesh.y[p] == 0) {
+      EXPECT_EQ(sized.pos.y[p], 0.0) << p;
+    }
+    if (mesh.x[p] == 0 || mesh.x[p] == 1) {
+      EXPECT_EQ(sized.pos.x[p], mesh.x[p]) << p;
+    }
+    if (mesh.y[p] == 1) {
+      EXPECT_NEAR(sized.pos.y[p], 1 - 0.9 * sized.pos.x[p], 1e-14) << p;
+    }
+  }
 }
 
 TEST(Rezone, PerturbedMeshGetsSmootherAndStaysValid) {
@@ -647,6 +723,9 @@ TEST(Rezone, BadOptionsAndSizesAreOneClearError) {
   o = {};
   o.max_move = 0;
   EXPECT_NE(message(o, xn).find("max_move"), std::string::npos);
+  o = {};
+  o.size_weight = -1;
+  EXPECT_NE(message(o, xn).find("size_weight"), std::string::npos);
   std::vector<double> short_x(3);
   EXPECT_NE(message({}, short_x).find("x_new"), std::string::npos);
   std::vector<double> x_lag = mesh.x;

@@ -132,6 +132,7 @@ struct AleOptions {
   int rezone_iterations = 1;      ///< rezone: smoothing sweeps per remap
   double corner_angle = 0.5;      ///< rezone: boundary points slide where the boundary turns less (degrees)
   double max_move = 0.5;          ///< rezone: largest move of a point per remap, in its shortest edges
+  double size_weight = 0;         ///< rezone reference_jacobian: weight of the relative-size term; 0: shapes only
   int remap_every = 0;            ///< remap after every N-th cycle; 0: off
   double quality_trigger = 0.25;  ///< remap when the worst zone shape quality falls below it; 0: off
   AleLimiter limiter = AleLimiter::barth_jespersen;

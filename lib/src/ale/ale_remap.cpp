@@ -112,6 +112,7 @@ AleRemap::AleRemap(Simulation::Impl& s)
     rezone_options_.iterations = o.rezone_iterations;
     rezone_options_.corner_angle_degrees = o.corner_angle;
     rezone_options_.max_move = o.max_move;
+    rezone_options_.size_weight = o.size_weight;
   }
   if (s.rz) ale_axis_masses(s);
   for (auto* v : {&xn_, &yn_, &xa_, &ya_, &xb_, &yb_, &kinetic_, &dk_}) v->assign(np, 0.0);

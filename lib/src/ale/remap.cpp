@@ -382,6 +382,66 @@ void Remapper::gather_fluxes(RemapFields& f) {
     }
     return s;
   };
+  // The donor's remainder (limiter only): each outflow's mean value is within the donor's
+  // bounds, but a zone that gives away much of its mass can be left with a value outside them
+  // (its outflows carried more than their share of the high or low values; a solid's specific
+  // energy went negative this way). Where that happens, the zone's outflows' deviations from
+  // its own value are scaled by the largest factor in [0, 1] that keeps its new value within
+  // its bounds (factor 0: the outflows carry the zone's value, and the new value is a mean of
+  // that and the inflows). It only changes fluxes, so it conserves, and it leaves every other
+  // zone's arithmetic as it was.
+  if (limiter && nf > 0) {
+    keep_.assign(nf * static_cast<std::size_t>(nz), 1.0);
+    int any = 0;
+#pragma omp parallel for schedule(static) reduction(max : any) if (nz > kParallelMin)
+    for (Index z = 0; z < nz; ++z) {
+      const Index* lb = zone_list_.data() + zone_list_begin_[z];
+      const Index* le = zone_list_.data() + zone_list_begin_[z + 1];
+      double dm = 0;
+      for (const Index* e = lb; e != le; ++e) dm += (*e & 1) ? -flux_mass_[*e >> 1] : flux_mass_[*e >> 1];
+      const double m0 = f.zone_mass[z], m1 = m0 + dm;
+      if (!(m1 > 0)) continue;
+      for (std::size_t i = 0; i < nf; ++i) {
+        const double q = f.specific[i][z];
+        if (!std::isfinite(q)) continue;
+        const double* fq = flux_q_.data() + i * nc2;
+        double all = 0, first = 0;  // with the outflows as they are, and carrying q
+        for (const Index* e = lb; e != le; ++e) {
+          const std::size_t sl = *e >> 1;
+          const double sign = (*e & 1) ? -1.0 : 1.0, mass = sign * flux_mass_[sl], v = sign * fq[sl];
+          all += v;
+          first += mass < 0 ? mass * q : v;
+        }
+        const std::size_t id = i * nz + z;
+        const double lo = qmin_[id], hi = qmax_[id];
+        const double q1 = (m0 * q + all) / m1;
+        if (q1 >= lo && q1 <= hi) continue;
+        const double q0 = (m0 * q + first) / m1, bound = q1 > hi ? hi : lo;
+        const double t = (q1 > hi ? q0 < hi : q0 > lo) ? (bound - q0) / (q1 - q0) : 0.0;
+        keep_[id] = std::clamp(t, 0.0, 1.0);
+        any = 1;
+      }
+    }
+    if (any) {
+#pragma omp parallel for schedule(static) if (nz > kParallelMin)
+      for (Index z = 0; z < nz; ++z) {
+        const Index* lb = zone_list_.data() + zone_list_begin_[z];
+        const Index* le = zone_list_.data() + zone_list_begin_[z + 1];
+        for (std::size_t i = 0; i < nf; ++i) {
+          const double t = keep_[i * nz + z];
+          if (t == 1.0) continue;
+          const double q = f.specific[i][z];
+          double* fq = flux_q_.data() + i * nc2;
+          for (const Index* e = lb; e != le; ++e) {
+            const std::size_t sl = *e >> 1;
+            const double mass = (*e & 1) ? -flux_mass_[sl] : flux_mass_[sl];
+            if (mass < 0) fq[sl] = flux_mass_[sl] * q + t * (fq[sl] - flux_mass_[sl] * q);  // z's outflow
+          }
+        }
+      }
+    }
+  }
+
   Index failed_zone = std::numeric_limits<Index>::max();
 #pragma omp parallel for schedule(static) reduction(min : failed_zone) if (nz > kParallelMin)
   for (Index z = 0; z < nz; ++z) {

@@ -91,6 +91,7 @@ class Remapper {
   // centre segment of corner c. Lists: slot * 2 + 1 where the flux is subtracted.
   std::vector<double> flux_mass_, flux_q_, seg_px_, seg_py_, seg_ke_;
   std::vector<char> flux_active_;
+  std::vector<double> keep_;  // per field and zone: fraction of its outflows' deviation kept (remainder bound)
   std::vector<Index> zone_list_begin_, zone_list_, corner_list_begin_, corner_list_, point_list_begin_, point_list_;
   // On one thread the fluxes go straight into these sums (and dm_point_, ...) instead.
   std::vector<double> zone_dm_, corner_dm_, zone_dq_;

@@ -88,7 +88,7 @@ struct LocalProblem {
 // Functional value over the local corners with `p` at (px, py); +inf if a denominator is not
 // positive (only possible with delta = 0).
 double local_value(const LocalProblem& lp, Index p, double px, double py, const double* x, const double* y,
-                   double delta) {
+                   double delta, double w = 0, double tau = 1) {
   double f = 0;
   for (int i = 0; i < lp.count; ++i) {
     const LocalCorner& c = lp.c[i];
@@ -98,15 +98,16 @@ double local_value(const LocalProblem& lp, Index p, double px, double py, const 
     const CornerValue v = corner_value(c.target, x1 - x0, y1 - y0, x2 - x0, y2 - y0);
     const double h = denominator(v.d, delta).h;
     if (!(h > 0)) return std::numeric_limits<double>::infinity();
-    f += v.n / h;
+    // Size term w (D / tau + tau / h(D)): the tau / h part shares the shape term's denominator.
+    f += (v.n + w * tau) / h + w * v.d / tau;
   }
   return f;
 }
 
 // Gradient and Hessian of the local functional with respect to p. Because u and v move by
 // multiples of the same dp, the second derivative of D along dp vanishes (dp x dp = 0).
-void local_derivatives(const LocalProblem& lp, const double* x, const double* y, double delta, Eigen::Vector2d& g,
-                       Eigen::Matrix2d& h) {
+void local_derivatives(const LocalProblem& lp, const double* x, const double* y, double delta, double w, double tau,
+                       Eigen::Vector2d& g, Eigen::Matrix2d& h) {
   g.setZero();
   h.setZero();
   for (int i = 0; i < lp.count; ++i) {
@@ -114,9 +115,12 @@ void local_derivatives(const LocalProblem& lp, const double* x, const double* y,
     const double ux = x[c.p1] - x[c.p0], uy = y[c.p1] - y[c.p0];
     const double vx = x[c.p2] - x[c.p0], vy = y[c.p2] - y[c.p0];
     const CornerTarget& t = c.target;
-    const CornerValue v = corner_value(t, ux, uy, vx, vy);
+    CornerValue v = corner_value(t, ux, uy, vx, vy);
     const Denominator den = denominator(v.d, delta);
     const double a = c.alpha, b = c.beta;
+    // The size term adds the constant w tau to the numerator and w D / tau, linear in p.
+    const double linear = w / tau;
+    v.n += w * tau;
     // dN/dp = a dN/du + b dN/dv; dN/du = 2 (k11 u + k12 v), dN/dv = 2 (k12 u + k22 v).
     const Eigen::Vector2d gn(2 * (a * (t.k11 * ux + t.k12 * vx) + b * (t.k12 * ux + t.k22 * vx)),
                              2 * (a * (t.k11 * uy + t.k12 * vy) + b * (t.k12 * uy + t.k22 * vy)));
@@ -125,7 +129,7 @@ void local_derivatives(const LocalProblem& lp, const double* x, const double* y,
     const double hn = 2 * (a * a * t.k11 + 2 * a * b * t.k12 + b * b * t.k22);
     const Eigen::Vector2d gh = den.dh * gd;
     const double inv = 1 / den.h;
-    g += inv * gn - (v.n * inv * inv) * gh;
+    g += inv * gn - (v.n * inv * inv) * gh + linear * gd;
     h += (hn * inv) * Eigen::Matrix2d::Identity() - (inv * inv) * (gn * gh.transpose() + gh * gn.transpose()) +
          (2 * v.n * inv * inv * inv) * (gh * gh.transpose()) - (v.n * inv * inv * den.d2h) * (gd * gd.transpose());
   }
@@ -230,6 +234,8 @@ void check_options(const RezoneOptions& o) {
     throw Error("rezone: corner_angle_degrees = " + std::to_string(o.corner_angle_degrees) + " is outside [0, 90)");
   if (!(o.max_move > 0 && o.max_move <= 1))
     throw Error("rezone: max_move = " + std::to_string(o.max_move) + " is outside (0, 1]");
+  if (!(o.size_weight >= 0 && std::isfinite(o.size_weight)))
+    throw Error("rezone: size_weight = " + std::to_string(o.size_weight) + " is not a finite number >= 0");
 }
 
 void check_size(std::span<const double> s, Index n, const char* name, const Mesh& mesh) {
@@ -624,7 +630,7 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& rc, const RezoneO
     // The corners around p: in each zone, the corner at p and its two neighbours.
     LocalProblem lp;
     lp.count = 0;
-    double dmin = std::numeric_limits<double>::infinity(), dmax = 0;
+    double dmin = std::numeric_limits<double>::infinity(), dmax = 0, dsum = 0;
     const Index cb = mesh.point_corner_begin[p], ce = mesh.point_corner_begin[p + 1];
     bool too_many = false;
     for (Index i = cb; i < ce && !too_many; ++i) {
@@ -648,17 +654,22 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& rc, const RezoneO
                 .d;
         dmin = std::min(dmin, d);
         dmax = std::max(dmax, std::abs(d));
+        dsum += d;
       }
     }
     if (too_many || !(dmax > 0)) return;
     // Regularise only where a corner is not convex (then the plain functional has no barrier).
     const double delta = dmin > 0 ? 0.0 : 1e-2 * dmax;
+    // Size target: the mean relative corner area around p, frozen for this update (a reference
+    // mesh, or any uniform scaling of it, has D = tau everywhere: still a fixed point).
+    const double tau = dsum / lp.count;
+    const double w = tau > 0 ? options.size_weight : 0.0;
 
     Eigen::Vector2d g;
     Eigen::Matrix2d h;
-    local_derivatives(lp, xs, ys, delta, g, h);
+    local_derivatives(lp, xs, ys, delta, w, tau, g, h);
     const double px = xs[p], py = ys[p];
-    const double f0 = local_value(lp, p, px, py, xs, ys, delta);
+    const double f0 = local_value(lp, p, px, py, xs, ys, delta, w, tau);
     const double lim = ws.move_limit[p];
 
     // Candidate position as a function of the step fraction t in (0, 1].
@@ -715,7 +726,7 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& rc, const RezoneO
     for (double t = 1; t > 0.1; t *= 0.5) {
       double qx, qy;
       position(t, &qx, &qy);
-      if (!(local_value(lp, p, qx, qy, xs, ys, delta) < f0)) continue;
+      if (!(local_value(lp, p, qx, qy, xs, ys, delta, w, tau) < f0)) continue;
       bool ok = true;
       for (Index i = cb; i < ce && ok; ++i) {
         const Index z = mesh.corner_zone[mesh.point_corners[i]];

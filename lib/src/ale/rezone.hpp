@@ -83,6 +83,12 @@ struct RezoneOptions {
   // No point moves further than this fraction of its shortest Lagrangian edge (keeps the
   // swept regions of a face-flux remap within the neighbouring zones). In (0, 1].
   double max_move = 0.5;
+  // reference_jacobian only: weight w of a size term w (D / tau + tau / D) per corner, D the
+  // corner's area relative to its reference corner (det T) and tau the mean D of the corners
+  // around the point, so that a zone much smaller (relative to its initial area) than its
+  // neighbours grows back toward their size (docs/ale.md, "Reference-Jacobian smoothing").
+  // 0: shapes only (scale-invariant). >= 0.
+  double size_weight = 0;
 };
 
 // What the rezone did (for history / diagnostics).

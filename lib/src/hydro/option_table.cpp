@@ -327,6 +327,9 @@ const OptionTable<AleOptions>& ale_option_table() {
                                    "rezone: boundary points slide only where the boundary turns by less"),
           number<&A::max_move>("max_move", {0, 1, true, false}, "-",
                                "rezone: largest move of a point per remap, in units of its shortest edge"),
+          number<&A::size_weight>("size_weight", {0, 100, false, false}, "-",
+                                  "rezone \"reference_jacobian\": weight of a term that pulls each zone's area, "
+                                  "relative to its initial area, toward its neighbours'; 0: shapes only"),
           integer<&A::remap_every>("remap_every", {0, 1e9, false, false}, "cycles",
                                    "also remap after every N-th cycle; 0: off (remap only on the quality trigger)"),
           number<&A::quality_trigger>("quality_trigger", {0, 1, false, true}, "-",

@@ -367,7 +367,7 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
 // The sums of the slots per zone, corner and point, in the serial sweep's order (bitwise the
 // same on any number of threads), and the new zone and corner values; a list entry's low bit
 // says whether the flux is added or taken.
-void Remapper::gather_fluxes(RemapFields& f) {
+void Remapper::gather_fluxes(RemapFields& f, bool limiter) {
   const Mesh& m = mesh_;
   const Index nz = m.num_zones(), np = m.num_points(), nc = m.num_corners();
   const std::size_t nf = f.specific.size(), nc2 = 2 * static_cast<std::size_t>(nc);
@@ -616,123 +616,145 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
   // of its cells instead, in the order in which the gathers below would add it: the same
   // bits without the slots' second pass (docs/ale.md, "Remap cost").
   const std::size_t nc2 = 2 * static_cast<std::size_t>(nc);
-  const bool direct = nz <= kParallelMin || omp_get_max_threads() == 1;
-  if (direct) {
-    std::fill(zone_dm_.begin(), zone_dm_.end(), 0.0);
-    std::fill(corner_dm_.begin(), corner_dm_.end(), 0.0);
-    zone_dq_.assign(nf * nz, 0.0);  // allocates at the first remap only
-    std::fill(zone_hit_.begin(), zone_hit_.end(), 0);
-    for (auto* v : {&dm_point_, &dpx_, &dpy_, &dke_}) std::fill(v->begin(), v->end(), 0.0);
-    std::fill(point_touched_.begin(), point_touched_.end(), 0);
-  }
-#pragma omp parallel for schedule(static) if (nz > kParallelMin && !direct)
-  for (Index z = 0; z < nz; ++z) {
-    const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
-    double gnx = 0, gny = 0;
-    for (Index k = 0; k < n; ++k) {
-      const Index p = m.corner_point[b + k];
-      gnx += xn[p], gny += yn[p];
+  const auto fluxes = [&](const bool direct) {
+    if (direct) {
+      std::fill(zone_dm_.begin(), zone_dm_.end(), 0.0);
+      std::fill(corner_dm_.begin(), corner_dm_.end(), 0.0);
+      zone_dq_.assign(nf * nz, 0.0);  // allocates at the first remap only
+      std::fill(zone_hit_.begin(), zone_hit_.end(), 0);
+      for (auto* v : {&dm_point_, &dpx_, &dpy_, &dke_}) std::fill(v->begin(), v->end(), 0.0);
+      std::fill(point_touched_.begin(), point_touched_.end(), 0);
     }
-    gnx /= n, gny /= n;
-    const double gox = gox_[z], goy = goy_[z];
-    const double* corner_rho = crho_.data() + b;
-    const double* corner_cx = ccx_.data() + b;
-    const double* corner_cy = ccy_.data() + b;
-    const double* corner_gx = cgx_.data() + b;
-    const double* corner_gy = cgy_.data() + b;
-    for (Index k = 0; k < n; ++k) {
-      const Index kp = (k + 1 == n) ? 0 : k + 1;
-      const Index c = b + k;
-      const Index pa = m.corner_point[c], pb = m.corner_point[b + kp];
-      const double mox = 0.5 * (xo[pa] + xo[pb]), moy = 0.5 * (yo[pa] + yo[pb]);
-      const double mnx = 0.5 * (xn[pa] + xn[pb]), mny = 0.5 * (yn[pa] + yn[pb]);
-      // Half sides, once per interior side (from the lower zone).
-      const Index nb = side_zone_[c];
-      if (nb > z) {
-        for (int h = 0; h < 2; ++h) {
-          // Half h: a -> mid (corner c) or mid -> b (corner c1); the cell on the left gains.
-          const std::size_t slot = 2 * static_cast<std::size_t>(c) + h;
-          const double ax0 = h == 0 ? xo[pa] : mox, ay0 = h == 0 ? yo[pa] : moy;
-          const double ax1 = h == 0 ? xn[pa] : mnx, ay1 = h == 0 ? yn[pa] : mny;
-          const double bx0 = h == 0 ? mox : xo[pb], by0 = h == 0 ? moy : yo[pb];
-          const double bx1 = h == 0 ? mnx : xn[pb], by1 = h == 0 ? mny : yn[pb];
-          const Swept s0 = swept_quad<Rz>(ax0, ay0, ax1, ay1, bx1, by1, bx0, by0, 0.0, 0.0);
-          if (s0.area == 0 && s0.mx == 0 && s0.my == 0) {
-            if (direct) continue;  // adds nothing
-            flux_mass_[slot] = 0, flux_active_[slot] = 0;
-            for (std::size_t i = 0; i < nf; ++i) flux_q_[i * nc2 + slot] = 0;
-            continue;
-          }
-          const Index d = s0.area > 0 ? nb : z;
-          const Index left = h == 0 ? c : b + kp, right = h == 0 ? side_corner0_[c] : side_corner1_[c];
-          // The donor corner's density and (zone) gradient: a corner never gives more than
-          // it holds, and corner densities stay tied to their neighbours'.
-          const Index dc = s0.area > 0 ? right : left;
-          const double mx = s0.mx - ccx_[dc] * s0.area, my = s0.my - ccy_[dc] * s0.area;
-          double flux = crho_[dc] * s0.area + cgx_[dc] * mx + cgy_[dc] * my;
-          // Its mean density within the donor zone's bounds (corner densities may lie
-          // outside them): no new extrema.
-          if (s0.simple && limiter) {
-            const double lo = s0.area * rlo_[d], hi = s0.area * rhi_[d];
-            flux = std::clamp(flux, std::min(lo, hi), std::max(lo, hi));
-          }
-          if (direct) {
-            zone_dm_[z] += flux, zone_dm_[nb] -= flux;
-            corner_dm_[left] += flux, corner_dm_[right] -= flux;
-            zone_hit_[z] = zone_hit_[nb] = 1;
-          } else {
-            flux_mass_[slot] = flux, flux_active_[slot] = 1;
-          }
-          for (std::size_t i = 0; i < nf; ++i) {
-            const double qd = f.specific[i][d];
-            double fq = 0;
-            if (std::isfinite(qd)) {
-              const std::size_t id = i * nz + d;
-              const double mqx = s0.mx - cx_[d] * s0.area, mqy = s0.my - cy_[d] * s0.area;
-              fq = qd * flux + crho_[dc] * (qgx_[id] * mqx + qgy_[id] * mqy);
-              // The flux's mean value stays within the donor's neighbourhood bounds (a jump
-              // of density inside the swept region could push it out): a repair that keeps
-              // conservation, since the same flux leaves one zone and enters the other.
-              // (A bow-tie region's mean is no point value: it is left alone.)
-              if (s0.simple) {
-                const double lo = flux * qmin_[id], hi = flux * qmax_[id];
-                fq = std::clamp(fq, std::min(lo, hi), std::max(lo, hi));
-              }
+#pragma omp parallel for schedule(static) if (nz > kParallelMin && !direct)
+    for (Index z = 0; z < nz; ++z) {
+      const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
+      double gnx = 0, gny = 0;
+      for (Index k = 0; k < n; ++k) {
+        const Index p = m.corner_point[b + k];
+        gnx += xn[p], gny += yn[p];
+      }
+      gnx /= n, gny /= n;
+      const double gox = gox_[z], goy = goy_[z];
+      const double* corner_rho = crho_.data() + b;
+      const double* corner_cx = ccx_.data() + b;
+      const double* corner_cy = ccy_.data() + b;
+      const double* corner_gx = cgx_.data() + b;
+      const double* corner_gy = cgy_.data() + b;
+      for (Index k = 0; k < n; ++k) {
+        const Index kp = (k + 1 == n) ? 0 : k + 1;
+        const Index c = b + k;
+        const Index pa = m.corner_point[c], pb = m.corner_point[b + kp];
+        const double mox = 0.5 * (xo[pa] + xo[pb]), moy = 0.5 * (yo[pa] + yo[pb]);
+        const double mnx = 0.5 * (xn[pa] + xn[pb]), mny = 0.5 * (yn[pa] + yn[pb]);
+        // Half sides, once per interior side (from the lower zone).
+        const Index nb = side_zone_[c];
+        if (nb > z) {
+          for (int h = 0; h < 2; ++h) {
+            // Half h: a -> mid (corner c) or mid -> b (corner c1); the cell on the left gains.
+            const std::size_t slot = 2 * static_cast<std::size_t>(c) + h;
+            const double ax0 = h == 0 ? xo[pa] : mox, ay0 = h == 0 ? yo[pa] : moy;
+            const double ax1 = h == 0 ? xn[pa] : mnx, ay1 = h == 0 ? yn[pa] : mny;
+            const double bx0 = h == 0 ? mox : xo[pb], by0 = h == 0 ? moy : yo[pb];
+            const double bx1 = h == 0 ? mnx : xn[pb], by1 = h == 0 ? mny : yn[pb];
+            const Swept s0 = swept_quad<Rz>(ax0, ay0, ax1, ay1, bx1, by1, bx0, by0, 0.0, 0.0);
+            if (s0.area == 0 && s0.mx == 0 && s0.my == 0) {
+              if (direct) continue;  // adds nothing
+              flux_mass_[slot] = 0, flux_active_[slot] = 0;
+              for (std::size_t i = 0; i < nf; ++i) flux_q_[i * nc2 + slot] = 0;
+              continue;
             }
-            if (direct)
-              zone_dq_[i * nz + z] += fq, zone_dq_[i * nz + nb] -= fq;
-            else
-              flux_q_[i * nc2 + slot] = fq;
+            const Index d = s0.area > 0 ? nb : z;
+            const Index left = h == 0 ? c : b + kp, right = h == 0 ? side_corner0_[c] : side_corner1_[c];
+            // The donor corner's density and (zone) gradient: a corner never gives more than
+            // it holds, and corner densities stay tied to their neighbours'.
+            const Index dc = s0.area > 0 ? right : left;
+            const double mx = s0.mx - ccx_[dc] * s0.area, my = s0.my - ccy_[dc] * s0.area;
+            double flux = crho_[dc] * s0.area + cgx_[dc] * mx + cgy_[dc] * my;
+            // Its mean density within the donor zone's bounds (corner densities may lie
+            // outside them): no new extrema.
+            if (s0.simple && limiter) {
+              const double lo = s0.area * rlo_[d], hi = s0.area * rhi_[d];
+              flux = std::clamp(flux, std::min(lo, hi), std::max(lo, hi));
+            }
+            if (direct) {
+              zone_dm_[z] += flux, zone_dm_[nb] -= flux;
+              corner_dm_[left] += flux, corner_dm_[right] -= flux;
+              zone_hit_[z] = zone_hit_[nb] = 1;
+            } else {
+              flux_mass_[slot] = flux, flux_active_[slot] = 1;
+            }
+            for (std::size_t i = 0; i < nf; ++i) {
+              const double qd = f.specific[i][d];
+              double fq = 0;
+              if (std::isfinite(qd)) {
+                const std::size_t id = i * nz + d;
+                const double mqx = s0.mx - cx_[d] * s0.area, mqy = s0.my - cy_[d] * s0.area;
+                fq = qd * flux + crho_[dc] * (qgx_[id] * mqx + qgy_[id] * mqy);
+                // The flux's mean value stays within the donor's neighbourhood bounds (a jump
+                // of density inside the swept region could push it out): a repair that keeps
+                // conservation, since the same flux leaves one zone and enters the other.
+                // (A bow-tie region's mean is no point value: it is left alone.)
+                if (s0.simple) {
+                  const double lo = flux * qmin_[id], hi = flux * qmax_[id];
+                  fq = std::clamp(fq, std::min(lo, hi), std::max(lo, hi));
+                }
+              }
+              if (direct)
+                zone_dq_[i * nz + z] += fq, zone_dq_[i * nz + nb] -= fq;
+              else
+                flux_q_[i * nc2 + slot] = fq;
+            }
           }
         }
-      }
-      // Centre segment mid(k, k+1) -> centre: corner c on the left, corner c1 on the right.
-      const std::size_t slot = nc2 + c;
-      const Swept s = swept_quad<Rz>(mox, moy, mnx, mny, gnx, gny, gox, goy, 0.0, 0.0);
-      if ((s.area == 0 && s.mx == 0 && s.my == 0) || (Rz && !segment_point_[c])) {
-        if (!direct) flux_mass_[slot] = seg_px_[c] = seg_py_[c] = seg_ke_[c] = 0, flux_active_[slot] = 0;
-        continue;
-      }
-      const Index kd = s.area > 0 ? kp : k;  // the donor corner
-      const double flux = corner_rho[kd] * s.area + corner_gx[kd] * (s.mx - corner_cx[kd] * s.area) +
-                          corner_gy[kd] * (s.my - corner_cy[kd] * s.area);
-      const Index pd = s.area > 0 ? pb : pa;
-      const double mx = s.mx - xo[pd] * s.area, my = s.my - yo[pd] * s.area;
-      const double u = f.vx[pd], w = f.vy[pd];
-      const double du = vgx_[pd] * mx + vgy_[pd] * my, dw = wgx_[pd] * mx + wgy_[pd] * my;
-      const double px = u * flux + corner_rho[kd] * du;
-      const double py = w * flux + corner_rho[kd] * dw;
-      const double ke = 0.5 * (u * u + w * w) * flux + corner_rho[kd] * (u * du + w * dw);
-      if (direct) {
-        corner_dm_[c] += flux, corner_dm_[b + kp] -= flux;
-        dm_point_[pa] += flux, dpx_[pa] += px, dpy_[pa] += py, dke_[pa] += ke, point_touched_[pa] = 1;
-        dm_point_[pb] -= flux, dpx_[pb] -= px, dpy_[pb] -= py, dke_[pb] -= ke, point_touched_[pb] = 1;
-      } else {
-        flux_mass_[slot] = flux, flux_active_[slot] = 1;
-        seg_px_[c] = px, seg_py_[c] = py, seg_ke_[c] = ke;
+        // Centre segment mid(k, k+1) -> centre: corner c on the left, corner c1 on the right.
+        const std::size_t slot = nc2 + c;
+        const Swept s = swept_quad<Rz>(mox, moy, mnx, mny, gnx, gny, gox, goy, 0.0, 0.0);
+        if ((s.area == 0 && s.mx == 0 && s.my == 0) || (Rz && !segment_point_[c])) {
+          if (!direct) flux_mass_[slot] = seg_px_[c] = seg_py_[c] = seg_ke_[c] = 0, flux_active_[slot] = 0;
+          continue;
+        }
+        const Index kd = s.area > 0 ? kp : k;  // the donor corner
+        const double flux = corner_rho[kd] * s.area + corner_gx[kd] * (s.mx - corner_cx[kd] * s.area) +
+                            corner_gy[kd] * (s.my - corner_cy[kd] * s.area);
+        const Index pd = s.area > 0 ? pb : pa;
+        const double mx = s.mx - xo[pd] * s.area, my = s.my - yo[pd] * s.area;
+        const double u = f.vx[pd], w = f.vy[pd];
+        const double du = vgx_[pd] * mx + vgy_[pd] * my, dw = wgx_[pd] * mx + wgy_[pd] * my;
+        const double px = u * flux + corner_rho[kd] * du;
+        const double py = w * flux + corner_rho[kd] * dw;
+        const double ke = 0.5 * (u * u + w * w) * flux + corner_rho[kd] * (u * du + w * dw);
+        if (direct) {
+          corner_dm_[c] += flux, corner_dm_[b + kp] -= flux;
+          dm_point_[pa] += flux, dpx_[pa] += px, dpy_[pa] += py, dke_[pa] += ke, point_touched_[pa] = 1;
+          dm_point_[pb] -= flux, dpx_[pb] -= px, dpy_[pb] -= py, dke_[pb] -= ke, point_touched_[pb] = 1;
+        } else {
+          flux_mass_[slot] = flux, flux_active_[slot] = 1;
+          seg_px_[c] = px, seg_py_[c] = py, seg_ke_[c] = ke;
+        }
       }
     }
-  }
+  };
+  bool direct = nz <= kParallelMin || omp_get_max_threads() == 1;
+  fluxes(direct);
+  // The donor remainder bound (gather_fluxes) changes fluxes, and the direct sums cannot undo
+  // a flux once added: where it would act (a zone's new value outside its bounds, tested on
+  // the same sums in the same order as there), the fluxes are computed again into the slots.
+  if (direct && limiter)
+    for (Index z = 0; z < nz && direct; ++z) {
+      const double m0 = f.zone_mass[z], m1 = m0 + zone_dm_[z];
+      if (!(m1 > 0)) continue;
+      for (std::size_t i = 0; i < nf; ++i) {
+        const double q = f.specific[i][z];
+        if (!std::isfinite(q)) continue;
+        const std::size_t id = i * nz + z;
+        const double q1 = (m0 * q + zone_dq_[id]) / m1;
+        if (!(q1 >= qmin_[id] && q1 <= qmax_[id])) {
+          direct = false;
+          break;
+        }
+      }
+    }
+  if (!direct && (nz <= kParallelMin || omp_get_max_threads() == 1)) fluxes(false);
 
   Index failed_zone = std::numeric_limits<Index>::max();
   if (direct) {
@@ -755,7 +777,7 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
     for (Index c = 0; c < nc; ++c)
       if (corner_dm_[c] != 0) f.corner_mass[c] += corner_dm_[c];
   } else {
-    gather_fluxes(f);
+    gather_fluxes(f, limiter);
   }
   // Repair: a zone whose corner kept less than a hundredth of its share (subcell densities
   // can drift apart where the mesh and the flow shear; a swept region then takes more than

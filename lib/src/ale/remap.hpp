@@ -55,7 +55,7 @@ class Remapper {
  private:
   template <bool Rz>
   void remap_impl(const double* xo, const double* yo, const double* xn, const double* yn, RemapFields& f, bool limiter);
-  void gather_fluxes(RemapFields& f);
+  void gather_fluxes(RemapFields& f, bool limiter);
   void zone_gradients(const double* q, bool limiter, double* gx, double* gy, double* lo, double* hi);
   void point_gradients(const double* qa, const double* qb, bool limiter, double* gax, double* gay, double* gbx,
                        double* gby);

@@ -25,6 +25,7 @@ enum class Presence {
   subzonal,         // numerics.hourglass = "subzonal" or "subzonal_triangles"
   ale,              // ale.mode is not "lagrangian"
   rz,               // numerics.geometry = "rz"
+  heat_flux,        // numerics.heat_flux_c1 or heat_flux_c2 > 0
 };
 
 // What an array takes part in (bit flags).

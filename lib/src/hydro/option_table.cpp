@@ -304,8 +304,8 @@ const OptionTable<HydroOptions>& numerics_option_table() {
                                    "artificial heat flux, linear coefficient (with the sound speed; §20); 0 with "
                                    "heat_flux_c2 = 0: off"),
           number<&O::heat_flux_c2>("heat_flux_c2", at_least(0), "-",
-                                   "artificial heat flux, quadratic coefficient (with l |div u| in compression; "
-                                   "§20)"),
+                                   "artificial heat flux, quadratic coefficient (with l max(-div u, 0): in "
+                                   "compression; §20)"),
       }};
   return table;
 }

@@ -112,6 +112,9 @@ struct HydroOptions {
   /// Cartesian mesh) trips it while its area is still positive; false checks zone areas only.
   bool check_corner_areas = true;
   CoordinateSystem geometry = CoordinateSystem::planar;  ///< planar or axisymmetric (docs/algorithm.md §19)
+  /// Noh's artificial heat flux (docs/algorithm.md §21), kappa = rho l (c1 C + c2 l max(-div u, 0));
+  /// off when both are 0 (the default).
+  double heat_flux_c1 = 0, heat_flux_c2 = 0;
 };
 
 /// How the mesh moves (a scene's [ale]; docs/ale.md): with the material (Lagrangian), rezoned

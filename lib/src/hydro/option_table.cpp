@@ -303,6 +303,12 @@ const OptionTable<HydroOptions>& numerics_option_table() {
           choice<&O::geometry>("geometry", {"planar", "rz"},
                                "planar (x, y) per unit depth, or axisymmetric: x = r >= 0, y = z, masses and "
                                "energies per radian (§19)"),
+          number<&O::heat_flux_c1>("heat_flux_c1", at_least(0), "-",
+                                   "artificial heat flux, linear coefficient (with the sound speed; §21); 0 with "
+                                   "heat_flux_c2 = 0: off"),
+          number<&O::heat_flux_c2>("heat_flux_c2", at_least(0), "-",
+                                   "artificial heat flux, quadratic coefficient (with l max(-div u, 0): in "
+                                   "compression; §21)"),
       }};
   return table;
 }

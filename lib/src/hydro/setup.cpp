@@ -13,6 +13,7 @@
 #include "ale/ale_remap.hpp"
 #include "hydro/boundary.hpp"
 #include "hydro/kernels/geometry.hpp"
+#include "hydro/kernels/heat_flux.hpp"
 #include "hydro/kernels/subzonal_pressure.hpp"
 #include "hydro/physics_digest.hpp"
 #include "hydro/simulation_impl.hpp"
@@ -99,6 +100,14 @@ void setup_edge_continuation(Simulation::Impl& s) {
       }
     }
   }
+}
+
+// The zone across each zone edge for the heat flux (docs/algorithm.md §21), same material only.
+void setup_heat_neighbours(Simulation::Impl& s) {
+  std::vector<int> material(s.mesh().num_zones(), -1);
+  for (const ZoneRange& r : s.ranges)
+    for (Index z = r.begin; z < r.end; ++z) material[z] = r.material;
+  s.heat_neighbour = heat_flux_neighbours(s.mesh(), material);
 }
 
 // rz (docs/algorithm.md §19): x is the radius. Points within round-off of the axis (a polar
@@ -205,6 +214,7 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
     any_burn = any_burn || mat.burn.has_value();
   }
   edge_viscosity = opt.viscosity == Viscosity::edge;
+  heat_flux = opt.heat_flux_c1 > 0 || opt.heat_flux_c2 > 0;
   dt_min = opt.dt_min > 0 ? opt.dt_min : 1e-8 * problem.t_end;
   setup_boundaries(*this);
   has_external = !pressure_edges.empty() || (problem.sources && problem.sources->momentum);
@@ -378,6 +388,7 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
   }
 
   if (edge_viscosity) setup_edge_continuation(*this);
+  if (heat_flux) setup_heat_neighbours(*this);
   constrained = constrained_points(*this);
   free_vx.assign(constrained.size(), 0.0);
   free_vy.assign(constrained.size(), 0.0);

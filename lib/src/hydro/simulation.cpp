@@ -66,6 +66,8 @@ std::string Simulation::dt_limit() const {
       return "retry after a tangled step";
     case R::landing:
       return "landing on an output or end time";
+    case R::heat_flux:
+      return "heat-flux limit of zone " + std::to_string(impl_->dt_zone);
   }
   return "";
 }

@@ -90,6 +90,13 @@ struct Simulation::Impl {
   std::vector<double> axis_moment;
   bool rz = false;
   std::vector<EdgeContinuation> continuation;
+  // Artificial heat flux (docs/algorithm.md §21): per corner the zone across its edge (same
+  // material) or kNoHeatNeighbour; per zone (state table) the conductivity, centre and the
+  // energy rate at t^n that steps 3 and 7 add, with its time-step limit.
+  bool heat_flux = false;
+  std::vector<Index> heat_neighbour;
+  std::vector<double> heat_kappa, heat_cx, heat_cy, heat_rate;
+  DtChoice heat_dt;
 
   // Boundary conditions.
   std::vector<PointConstraint> constraints;
@@ -114,7 +121,7 @@ struct Simulation::Impl {
   bool have_previous_forces = false;
   double energy_initial = 0, boundary_work = 0, source_work = 0;
   double ale_fixup = 0;  // kinetic energy the ALE remap's fix-up moved into internal energy (cumulative)
-  enum class DtReason { cfl, growth, initial, maximum, retry, landing } dt_reason = DtReason::cfl;
+  enum class DtReason { cfl, growth, initial, maximum, retry, landing, heat_flux } dt_reason = DtReason::cfl;
   Index dt_zone = -1;  // zone that limited the last CFL/volume candidate
 
   // What defines the physics, fixed at set-up (checkpoints carry it; a restart compares it).
@@ -150,6 +157,8 @@ struct Simulation::Impl {
   // Full force evaluation at the current state (first cycle, fresh predictor).
   void evaluate_forces_now();
   void weight_rz_forces(const double* px, double h_position);
+  // The heat flux's rates and time-step limit (heat_dt) on the state at t^n.
+  void heat_flux_rates_now();
   void setup_rz_masses();
   double kinetic_energy() const;
   double internal_energy() const;

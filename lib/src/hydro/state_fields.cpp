@@ -83,6 +83,10 @@ const std::array kFields = {
     StateField{"lighting_time", &I::lighting_time, Entity::zone, Presence::burn, kR, kNever},
     StateField{"burn_length", &I::burn_length, Entity::zone, Presence::burn, kR, 1.0},
     StateField{"source_energy", &I::source_energy, Entity::zone, Presence::energy_source},
+    StateField{"heat_kappa", &I::heat_kappa, Entity::zone, Presence::heat_flux},
+    StateField{"heat_cx", &I::heat_cx, Entity::zone, Presence::heat_flux},
+    StateField{"heat_cy", &I::heat_cy, Entity::zone, Presence::heat_flux},
+    StateField{"heat_rate", &I::heat_rate, Entity::zone, Presence::heat_flux},
     // Corners.
     StateField{"corner_fx", &I::corner_fx, Entity::corner, Presence::always, kC},
     StateField{"corner_fy", &I::corner_fy, Entity::corner, Presence::always, kC},
@@ -127,6 +131,8 @@ bool present(const Simulation::Impl& s, Presence presence) {
       return s.problem.options.geometry == CoordinateSystem::rz;
     case Presence::compensated:
       return s.problem.options.compensated_update;
+    case Presence::heat_flux:
+      return s.heat_flux;
   }
   return false;
 }

@@ -26,6 +26,7 @@ enum class Presence {
   ale,              // ale.mode is not "lagrangian"
   rz,               // numerics.geometry = "rz"
   compensated,      // numerics.compensated_update
+  heat_flux,        // numerics.heat_flux_c1 or heat_flux_c2 > 0
 };
 
 // What an array takes part in (bit flags).

@@ -22,6 +22,7 @@
 #include "hydro/exact_sum.hpp"
 #include "hydro/kernels/compensated.hpp"
 #include "hydro/kernels/geometry.hpp"
+#include "hydro/kernels/heat_flux.hpp"
 #include "hydro/kernels/points.hpp"
 #include "hydro/kernels/rz.hpp"
 #include "hydro/kernels/viscosity_edge.hpp"
@@ -226,7 +227,8 @@ std::int64_t Simulation::Impl::zone_forces(const double* px, const double* py, d
                           energy_source(*this),
                           dt_half,
                           t_eval,
-                          data_or_null(corner_mass)};
+                          data_or_null(corner_mass),
+                          data_or_null(heat_rate)};
   const ZoneForceOutput out{corner_fx.data(),       corner_fy.data(),      q.data(),
                             data_or_null(rho_half), data_or_null(c_half),  data_or_null(sxx_half),
                             data_or_null(syy_half), data_or_null(sxy_half)};
@@ -279,6 +281,38 @@ void Simulation::Impl::weight_rz_forces(const double* px, double h_position) {
                           axis_points.size(), axis_points.data(), axis_corner_begin.data(), axis_corner.data(),
                           axis_ref_a.data(), axis_ref_b.data(), axis_moment.data(), corner_fx.data(), corner_fy.data(),
                           axis_ax.data(), axis_ay.data());
+}
+
+// The heat flux on the state at t^n (docs/algorithm.md §21): every zone's conductivity and
+// centre, then its energy rate and time-step limit. The owned zones' values read only zones
+// across their edges (ghost layer 1), exchanged after the last step, so they are the serial ones.
+void Simulation::Impl::heat_flux_rates_now() {
+  const HydroOptions& o = problem.options;
+  const HeatFluxInput in{zone_corner_begin.data(),
+                         corner_point.data(),
+                         heat_neighbour.data(),
+                         x.data(),
+                         y.data(),
+                         vx.data(),
+                         vy.data(),
+                         rho.data(),
+                         c.data(),
+                         e.data(),
+                         zone_mass.data(),
+                         o.heat_flux_c1,
+                         o.heat_flux_c2};
+  const Index nz = mesh().num_zones();
+  with_geometry(rz, [&](auto g) {
+    heat_flux_conductivity<decltype(g)>(in, 0, nz, heat_kappa.data(), heat_cx.data(), heat_cy.data());
+  });
+  DtChoice choice, ghost_choice;
+  for (const ZoneRange& r : ranges) {
+    with_geometry(rz, [&](auto g) {
+      heat_flux_rates<decltype(g)>(in, heat_kappa.data(), heat_cx.data(), heat_cy.data(), r.begin, r.end,
+                                   kHeatFluxDtFraction, heat_rate.data(), r.ghost ? ghost_choice : choice);
+    });
+  }
+  heat_dt = agreed(*this, choice);
 }
 
 // External point forces at the half step: applied pressures (boundary work) and momentum
@@ -386,7 +420,8 @@ std::int64_t Simulation::Impl::end_of_step(double dt, double t_new) {
                         data_or_null(burn_length),
                         energy_source(*this),
                         dt,
-                        t_new};
+                        t_new,
+                        data_or_null(heat_rate)};
   const ZoneEndOutput out{e_new.data(),           data_or_null(source_energy), data_or_null(sxx_new),
                           data_or_null(syy_new),  data_or_null(sxy_new),       data_or_null(plastic_new),
                           data_or_null(burn_new), state_output(*this)};
@@ -509,11 +544,20 @@ void Simulation::Impl::step(double t_stop) {
   const HydroOptions& o = problem.options;
   // Time-step control (docs/algorithm.md §9): CFL and volume limits from the end of the last step,
   // growth limit, dt_max, first-step dt_init; land exactly on t_stop.
-  const DtControl control = control_time_step(dt_next, dt_control_prev, cycle == 0, o.dt_growth, o.dt_init, o.dt_max);
+  // The heat flux's rates at t^n and its stability limit join the zones' candidates.
+  double candidate = dt_next;
+  bool heat_limited = false;
+  if (heat_flux) {
+    heat_flux_rates_now();
+    heat_limited = heat_dt.dt < candidate;
+    if (heat_limited) candidate = heat_dt.dt;
+  }
+  const DtControl control = control_time_step(candidate, dt_control_prev, cycle == 0, o.dt_growth, o.dt_init, o.dt_max);
   double dt = control.dt;
   switch (control.limit) {
     case DtLimit::cfl:
-      dt_reason = DtReason::cfl;
+      dt_reason = heat_limited ? DtReason::heat_flux : DtReason::cfl;
+      if (heat_limited) dt_zone = heat_dt.zone;
       break;
     case DtLimit::growth:
       dt_reason = DtReason::growth;

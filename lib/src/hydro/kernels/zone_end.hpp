@@ -103,6 +103,7 @@ struct ZoneEndInput {
   const double *burn, *lighting_time, *burn_length;                          // (burn)
   const EnergySource* energy_source;                                         // null: none
   double dt, t_new;
+  const double* heat_rate;  // heat flux energy rate per zone at t^n (docs/algorithm.md §21); null: off
 };
 
 // Outputs of Z2 (null where absent).
@@ -154,6 +155,8 @@ std::int64_t finish_zones(const ZoneEndInput& input, const HydroOptions& o, cons
         energy += dt * se;
         out.source_energy[z] = dt * se * in.zone_mass[z];
       }
+      // The heat flux: internal energy exchanged with the neighbours, conservative (§21).
+      if (in.heat_rate) energy += dt * in.heat_rate[z] / in.zone_mass[z];
       out.e_new[z] = energy;
       // Step 8: S^{n+1} = return(S^n + dt dS/dt(S^{n+1/2}, L(v_bar) on the half geometry)).
       if (m.strength) {

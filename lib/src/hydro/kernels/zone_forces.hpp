@@ -43,6 +43,7 @@ struct ZoneForceInput {
   double dt_half;              // t_eval - t^n: dt/2 for the predictor state, 0 for an evaluation at t^n
   double t_eval;               // time of the force evaluation
   const double* subzone_mass;  // constant subzonal masses per corner (subzonal hourglass options)
+  const double* heat_rate;     // heat flux energy rate per zone at t^n (docs/algorithm.md §21); null: off
 };
 
 // Outputs of Z1, written per zone (null where absent).
@@ -119,6 +120,8 @@ std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, con
       const auto [cx, cy] = Geometry::template centre<N>(v);
       e_half += in.dt_half * (*in.energy_source)(cx, cy, in.t_eval - 0.5 * in.dt_half);
     }
+    // The heat flux's half step, for the same reason (docs/algorithm.md §21).
+    if (in.heat_rate && in.dt_half > 0) e_half += in.dt_half * in.heat_rate[z] / mass;
     Deviator sh;
     if (m.strength) {
       // L(v^n) on x^n: kept from the end of the last step, bitwise what recomputing it gives.

@@ -402,7 +402,7 @@ void Remapper::gather_fluxes(RemapFields& f, bool limiter) {
   // its bounds (factor 0: the outflows carry the zone's value, and the new value is a mean of
   // that and the inflows). It only changes fluxes, so it conserves, and it leaves every other
   // zone's arithmetic as it was.
-  if (limiter && nf > 0) {
+  if (limiter && remainder_bound_ && nf > 0) {
     keep_.assign(nf * static_cast<std::size_t>(nz), 1.0);
     int any = 0;
 #pragma omp parallel for schedule(static) reduction(max : any) if (nz > kParallelMin)
@@ -751,7 +751,7 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
   // The donor remainder bound (gather_fluxes) changes fluxes, and the direct sums cannot undo
   // a flux once added: where it would act (a zone's new value outside its bounds, tested on
   // the same sums in the same order as there), the fluxes are computed again into the slots.
-  if (direct && limiter)
+  if (direct && limiter && remainder_bound_)
     for (Index z = 0; z < nz && direct; ++z) {
       const double m0 = f.zone_mass[z], m1 = m0 + zone_dm_[z];
       if (!(m1 > 0)) continue;

@@ -51,6 +51,9 @@ class Remapper {
   const Mesh& mesh() const { return mesh_; }
   // Zones whose corner masses were reset so far (see remap()).
   long repaired_zones() const { return repaired_; }
+  // The donor remainder bound of the limited remap (docs/ale.md, "Reconstruction and limiter"),
+  // on by default; off only for the tests that show what it prevents.
+  void set_remainder_bound(bool on) { remainder_bound_ = on; }
 
  private:
   template <bool Rz>
@@ -97,6 +100,7 @@ class Remapper {
   std::vector<double> zone_dm_, corner_dm_, zone_dq_;
   std::vector<char> zone_hit_;
   long repaired_ = 0;
+  bool remainder_bound_ = true;
 };
 
 }  // namespace stagger

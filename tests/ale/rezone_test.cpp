@@ -675,6 +675,47 @@ TEST(Rezone, GuardBacksOffToAValidMesh) {
   EXPECT_EQ(xn, xl);
 }
 
+// A valid zone can have a median-mesh corner of non-positive area: a dart whose vertex mean
+// lies past its reflex vertex. Those corners are the hydro's point volumes and the remap's
+// subcells (a remap could give such a corner no mass), so the guard treats it as folded.
+TEST(Rezone, GuardKeepsTheMedianCornersOfAValidZonePositive) {
+  const Mesh mesh = rectangle_mesh(2, 2, 2, 2);
+  const RezoneConstraints rc = make_rezone_constraints(mesh, {});
+  Index p = -1, dart = -1;
+  for (Index q = 0; q < mesh.num_points(); ++q)
+    if (mesh.x[q] == 1 && mesh.y[q] == 1) p = q;
+  for (Index z = 0; z < mesh.num_zones(); ++z)
+    if (mesh.x[mesh.corner_point[mesh.zone_corner_begin[z]]] < 1 &&
+        mesh.y[mesh.corner_point[mesh.zone_corner_begin[z]]] < 1)
+      dart = z;
+  ASSERT_GE(p, 0);
+  ASSERT_GE(dart, 0);
+  const auto smallest_corner = [&](Index z, const std::vector<double>& x, const std::vector<double>& y) {
+    ZoneVertices v;
+    const Index b = mesh.zone_corner_begin[z];
+    v.n = static_cast<int>(mesh.zone_corner_begin[z + 1] - b);
+    for (int k = 0; k < v.n; ++k) v.x[k] = x[mesh.corner_point[b + k]], v.y[k] = y[mesh.corner_point[b + k]];
+    double a[kMaxZoneVertices];
+    return PlanarGeometry::corner_areas(v, a);
+  };
+  std::vector<double> xs = mesh.x, ys = mesh.y;
+  xs[p] = ys[p] = 0.3;                         // zone [0, 1]^2 becomes the dart (0, 0), (1, 0), (0.3, 0.3), (0, 1)
+  ASSERT_EQ(crossing_zones(mesh, xs, ys), 0);  // valid: the crossing test alone accepts it
+  EXPECT_NEAR(smallest_corner(dart, xs, ys), -0.0125, 1e-15);
+  std::vector<double> xn(mesh.num_points()), yn(mesh.num_points());
+  RezoneWorkspace ws;
+  const RezoneResult r = relax_and_guard(mesh, rc, 1.0, mesh.x, mesh.y, xs, ys, xn, yn, ws);
+  EXPECT_EQ(r.backoff_rounds, 1);
+  EXPECT_EQ(r.backed_off_points, 4);  // the dart's
+  EXPECT_DOUBLE_EQ(xn[p], 0.65);
+  EXPECT_DOUBLE_EQ(yn[p], 0.65);
+  for (Index z = 0; z < mesh.num_zones(); ++z) EXPECT_GT(smallest_corner(z, xn, yn), 0.1) << z;
+  // A corner already non-positive in the Lagrangian mesh is not the guard's: left as it is.
+  const RezoneResult kept = relax_and_guard(mesh, rc, 1.0, xs, ys, xs, ys, xn, yn, ws);
+  EXPECT_EQ(kept.backoff_rounds, 0);
+  EXPECT_EQ(xn, xs);
+}
+
 TEST(Rezone, QualityMeasures) {
   Mesh mesh = rectangle_mesh(4, 3, 2, 1);
   const QualitySummary sj = mesh_quality_summary(mesh, QualityMeasure::scaled_jacobian, mesh.x, mesh.y, {}, {});

@@ -789,8 +789,16 @@ RezoneResult relax_and_guard(const Mesh& mesh, const RezoneConstraints& rc, doub
     Index bad = 0;
 #pragma omp parallel for schedule(static) reduction(+ : bad) if (nz > 20000)
     for (Index z = 0; z < nz; ++z) {
-      bad_zone[z] = zone_crosses(zone_vertices(mesh, z, x_new.data(), y_new.data())) &&
-                    !zone_crosses(zone_vertices(mesh, z, x_lag.data(), y_lag.data()));
+      const ZoneVertices v = zone_vertices(mesh, z, x_new.data(), y_new.data());
+      // A valid zone can still have a median-mesh corner of non-positive area (a dart whose
+      // vertex mean lies past its reflex vertex): the hydro calls that tangled (docs/algorithm.md
+      // §9), and the remap cannot give such a corner (its subcell) a mass.
+      double corner[kMaxZoneVertices];
+      if (zone_crosses(v))
+        bad_zone[z] = !zone_crosses(zone_vertices(mesh, z, x_lag.data(), y_lag.data()));
+      else
+        bad_zone[z] = !(PlanarGeometry::corner_areas(v, corner) > 0) &&
+                      PlanarGeometry::corner_areas(zone_vertices(mesh, z, x_lag.data(), y_lag.data()), corner) > 0;
       bad += bad_zone[z];
     }
     if (bad == 0) break;

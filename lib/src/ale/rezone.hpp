@@ -123,7 +123,8 @@ RezoneConstraints make_rezone_constraints(const Mesh& mesh, std::span<const Boun
 // The rezone: from the Lagrangian positions (x_lag, y_lag) to (x_new, y_new), all of size
 // npoints. (x_ref, y_ref) is the reference mesh (the initial one), read only by
 // reference_jacobian. Guarantee: every zone that is valid at the Lagrangian positions
-// (positive area, no crossing edges: hydro/kernels/zone_validity.hpp) is valid in the result;
+// (positive area, no crossing edges: hydro/kernels/zone_validity.hpp) is valid in the result,
+// and one whose median-mesh corners all have positive area keeps them positive;
 // points whose move would break one get their relaxation halved, down to the Lagrangian
 // position. Fixed points are copied bitwise; slide points stay on their old boundary edges.
 // Throws stagger::Error for options out of range. x_new/y_new must not alias x_lag/y_lag.
@@ -136,7 +137,8 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& constraints, cons
 // (x_new, y_new) = x_lag + relaxation (x_smooth - x_lag), fixed points bitwise Lagrangian; then
 // every zone valid at the Lagrangian positions and not at the new ones halves the relaxation
 // of its points, round after round, and after eight rounds puts them back to their Lagrangian
-// positions. Every zone valid at (x_lag, y_lag) is valid at (x_new, y_new).
+// positions (the same for a zone whose median-mesh corners lose their positive area). Every
+// zone valid at (x_lag, y_lag) is valid at (x_new, y_new).
 RezoneResult relax_and_guard(const Mesh& mesh, const RezoneConstraints& constraints, double relaxation,
                              std::span<const double> x_lag, std::span<const double> y_lag,
                              std::span<const double> x_smooth, std::span<const double> y_smooth,

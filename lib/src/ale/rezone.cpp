@@ -750,6 +750,29 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& rc, const RezoneO
   return relax_and_guard(mesh, rc, options.relaxation, x_lag, y_lag, ws.xs, ws.ys, x_new, y_new, ws);
 }
 
+namespace {
+// Whether every median-mesh corner of v surely has a positive area, cheaply: corner k's area
+// is (x_{k+1} - x_{k-1}) x (g - x_k) / 4, g the vertex mean. The margin, 1e-12 of the squared
+// largest coordinate, is far above the rounding of PlanarGeometry::corner_areas (a shoelace on
+// absolute coordinates), so where this says yes, so would corner_areas; otherwise corner_areas
+// decides.
+bool corners_surely_positive(const ZoneVertices& v) {
+  const int n = v.n;
+  double gx = 0, gy = 0, big = 0;
+  for (int k = 0; k < n; ++k) {
+    gx += v.x[k], gy += v.y[k];
+    big = std::max({big, std::abs(v.x[k]), std::abs(v.y[k])});
+  }
+  gx /= n, gy /= n;
+  const double margin = 1e-12 * big * big;
+  for (int k = 0; k < n; ++k) {
+    const int kp = k + 1 == n ? 0 : k + 1, km = k == 0 ? n - 1 : k - 1;
+    if (!((v.x[kp] - v.x[km]) * (gy - v.y[k]) - (v.y[kp] - v.y[km]) * (gx - v.x[k]) > margin)) return false;
+  }
+  return true;
+}
+}  // namespace
+
 RezoneResult relax_and_guard(const Mesh& mesh, const RezoneConstraints& rc, double relaxation,
                              std::span<const double> x_lag, std::span<const double> y_lag,
                              std::span<const double> x_smooth, std::span<const double> y_smooth,
@@ -797,7 +820,7 @@ RezoneResult relax_and_guard(const Mesh& mesh, const RezoneConstraints& rc, doub
       if (zone_crosses(v))
         bad_zone[z] = !zone_crosses(zone_vertices(mesh, z, x_lag.data(), y_lag.data()));
       else
-        bad_zone[z] = !(PlanarGeometry::corner_areas(v, corner) > 0) &&
+        bad_zone[z] = !corners_surely_positive(v) && !(PlanarGeometry::corner_areas(v, corner) > 0) &&
                       PlanarGeometry::corner_areas(zone_vertices(mesh, z, x_lag.data(), y_lag.data()), corner) > 0;
       bad += bad_zone[z];
     }

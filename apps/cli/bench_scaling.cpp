@@ -211,13 +211,14 @@ int scaling_suite(const fs::path& scenes, const fs::path& out_dir, bool quick, i
       return text.str();
     };
     const double unit = 1e9;
-    report.precision(4);
+    const auto precision = report.precision(4);
     report << (is_triad ? "  memory bandwidth (triad a = b + 3 c, 3 arrays of " +
                               std::to_string(triad_elements * 8 / (1 << 20)) + " MiB, 24 bytes per element): "
                         : std::string("  compute (32 chains x = x m + d in registers): "))
            << "1 process " << one / unit << (is_triad ? " GB/s" : " Gflop/s") << ", 2 processes "
            << rates["2 processes"] / unit << " (" << ratio("2 processes") << "x), 2 threads "
            << rates["2 threads"] / unit << " (" << ratio("2 threads") << "x), medians\n";
+    report.precision(precision);
   }
   struct Config {
     std::string name;

@@ -175,9 +175,10 @@ int scaling_suite(const fs::path& scenes, const fs::path& out_dir, bool quick, i
   };
   const std::vector<ProbeConfig> probe_configs = {
       {"1 process", 1, false}, {"2 processes", 2, false}, {"2 threads", 2, true}};
+  std::map<std::string, double> triad_rate, compute_rate;  // medians by "1 process", ...
   for (const ProbeKind kind : {ProbeKind::triad, ProbeKind::compute}) {
     const bool is_triad = kind == ProbeKind::triad;
-    std::map<std::string, double> rates;
+    std::map<std::string, double>& rates = is_triad ? triad_rate : compute_rate;
     for (const ProbeConfig& c : probe_configs) {
       std::vector<double> values;
       for (int k = 0; k < repeat; ++k) {
@@ -235,8 +236,12 @@ int scaling_suite(const fs::path& scenes, const fs::path& out_dir, bool quick, i
       m.name = c.name;
       std::cerr << "[scaling] sedov " << n << "x" << n << " " << c.name << " (" << k + 1 << "/" << repeat << "), load "
                 << load_average() << "\n";
-      run(stagger, sedov, sets, c.ranks, c.threads,
-          out_dir / "scaling_runs" / ("r" + std::to_string(c.ranks) + "t" + std::to_string(c.threads)), m);
+      // Appended, not `"r" + ...`: g++ 12 warns (-Wrestrict) wrongly on that sum once inlined here.
+      std::string dir = "r";
+      dir += std::to_string(c.ranks);
+      dir += 't';
+      dir += std::to_string(c.threads);
+      run(stagger, sedov, sets, c.ranks, c.threads, out_dir / "scaling_runs" / dir, m);
       if (m.status == "completed" && m.loop_seconds > 0) rates.push_back(m.zones * m.cycles / m.loop_seconds);
       if (m.status == "completed") peak[c.name] = std::max(peak[c.name], m.peak_bytes / m.zones);
       all.push_back(m);
@@ -282,6 +287,14 @@ int scaling_suite(const fs::path& scenes, const fs::path& out_dir, bool quick, i
   if (one > 0)
     std::cout << "  speed-up 2 ranks / 1 rank: " << median_rate["2 ranks x 1 thread"] / one
               << ", 2 threads / 1 thread: " << median_rate["1 rank x 2 threads"] / one << "\n";
+  // The machine's ceilings beside them (docs/parallel.md, "Speed").
+  const auto gain = [](std::map<std::string, double>& rate, const std::string& who) {
+    return rate["1 process"] > 0 ? rate[who] / rate["1 process"] : 0.0;
+  };
+  std::cout << "  the machine from 1 to 2 cores: memory bandwidth " << gain(triad_rate, "2 processes")
+            << "x (2 processes), " << gain(triad_rate, "2 threads") << "x (2 threads); compute "
+            << gain(compute_rate, "2 processes") << "x (2 processes), " << gain(compute_rate, "2 threads")
+            << "x (2 threads)\n";
   std::cout << "  8 ranks (oversubscribed) vs serial, Sedov 40 x 40: "
             << (identical  ? "history.csv identical"
                 : both_ran ? "history.csv DIFFERS"

@@ -21,7 +21,6 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
-#include <unordered_map>
 
 #include "hydro/kernels/zone_status.hpp"
 #include "stagger/error.hpp"
@@ -136,22 +135,18 @@ Remapper::Remapper(const Mesh& mesh, std::span<const int> zone_material, bool rz
   side_corner0_.assign(nc, -1);
   side_corner1_.assign(nc, -1);
   boundary_point_.assign(np, 0);
-  auto key = [](Index a, Index b) { return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b); };
-  std::unordered_map<std::uint64_t, Index> side_of;  // directed side (a, b) -> corner
-  side_of.reserve(nc);
   auto next_corner = [&](Index c) {
     const Index z = mesh.corner_zone[c];
     return c + 1 == mesh.zone_corner_begin[z + 1] ? mesh.zone_corner_begin[z] : c + 1;
   };
-  for (Index c = 0; c < nc; ++c) side_of[key(mesh.corner_point[c], mesh.corner_point[next_corner(c)])] = c;
+  const std::vector<Index> twin = side_twins(mesh);
   for (Index c = 0; c < nc; ++c) {
-    const Index a = mesh.corner_point[c], b = mesh.corner_point[next_corner(c)];
-    const auto it = side_of.find(key(b, a));
+    const Index a = mesh.corner_point[c], b = mesh.corner_point[next_corner(c)], t = twin[c];
     const Index z = mesh.corner_zone[c];
-    if (it != side_of.end() && zone_material[mesh.corner_zone[it->second]] == zone_material[z]) {
-      side_zone_[c] = mesh.corner_zone[it->second];
-      side_corner1_[c] = it->second;               // its corner at b
-      side_corner0_[c] = next_corner(it->second);  // its corner at a
+    if (t >= 0 && zone_material[mesh.corner_zone[t]] == zone_material[z]) {
+      side_zone_[c] = mesh.corner_zone[t];
+      side_corner1_[c] = t;               // its corner at b
+      side_corner0_[c] = next_corner(t);  // its corner at a
     } else {
       boundary_point_[a] = boundary_point_[b] = 1;
     }

@@ -915,7 +915,7 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
   // The state: the serial set-up's, bit for bit, one array at a time. The other ranks set
   // their parts up and receive; rank 0 sets its own up last, once the whole state has dropped
   // its arrays, its own values of them set aside (an array that is all +0.0 is not copied:
-  // the set-up writes it as zeros): the whole state and rank 0's part are never both
+  // its part gets zeros): the whole state and rank 0's part are never both
   // complete (docs/parallel.md, "Memory"). An ALE scene's whole state keeps every array: the
   // serial remap runs on it (docs/parallel.md, "ALE").
   on_every_rank(c, [&] {

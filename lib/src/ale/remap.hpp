@@ -56,6 +56,8 @@ class Remapper {
   template <bool Rz>
   void remap_impl(const double* xo, const double* yo, const double* xn, const double* yn, RemapFields& f, bool limiter);
   void gather_fluxes(RemapFields& f, bool limiter);
+  double remainder_keep(const RemapFields& f, Index z, std::size_t i, double m0, double m1) const;
+  void keep_outflows(const RemapFields& f, Index z, std::size_t i, double t);
   void zone_gradients(const double* q, bool limiter, double* gx, double* gy, double* lo, double* hi);
   void point_gradients(const double* qa, const double* qb, bool limiter, double* gax, double* gay, double* gbx,
                        double* gby);
@@ -96,6 +98,8 @@ class Remapper {
   // On one thread the fluxes go straight into these sums (and dm_point_, ...) instead.
   std::vector<double> zone_dm_, corner_dm_, zone_dq_;
   std::vector<char> zone_hit_;
+  std::vector<Index> bound_zones_;  // one thread: the zones where the donor remainder bound acts
+  std::vector<char> zone_resum_;    // ... and the zones whose sums it changes
   long repaired_ = 0;
 };
 

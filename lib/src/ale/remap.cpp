@@ -251,6 +251,10 @@ Remapper::Remapper(const Mesh& mesh, std::span<const int> zone_material, bool rz
   corner_dm_.assign(nc, 0.0);
   zone_hit_.assign(nz, 0);
   zone_resum_.assign(nz, 0);
+  zone_active_.assign(nz, 1);
+  zone_near_.assign(nz, 1);
+  point_moved_.assign(np, 1);
+  point_near_.assign(np, 1);
   bound_zones_.reserve(nz);
 }
 
@@ -281,6 +285,7 @@ void Remapper::zone_gradients(const double* q, bool limiter, double* gx, double*
   const Index nz = m.num_zones();
 #pragma omp parallel for schedule(static) if (nz > kParallelMin)
   for (Index z = 0; z < nz; ++z) {
+    if (!zone_active_[z]) continue;  // gives nothing (remap_impl)
     gx[z] = gy[z] = 0;
     if (lo) lo[z] = hi[z] = q[z];
     if (!std::isfinite(q[z])) continue;
@@ -333,6 +338,7 @@ void Remapper::point_gradients(const double* qa, const double* qb, bool limiter,
   const Index np = mesh_.num_points();
 #pragma omp parallel for schedule(static) if (np > kParallelMin)
   for (Index p = 0; p < np; ++p) {
+    if (!point_near_[p]) continue;  // gives nothing (remap_impl)
     const double* q[2] = {qa, qb};
     double bx[2] = {0, 0}, by[2] = {0, 0}, qmin[2] = {qa[p], qb[p]}, qmax[2] = {qa[p], qb[p]};
     for (Index k = point_nbr_begin_[p]; k < point_nbr_begin_[p + 1]; ++k) {
@@ -449,6 +455,7 @@ void Remapper::gather_fluxes(RemapFields& f, bool limiter) {
     int any = 0;
 #pragma omp parallel for schedule(static) reduction(max : any) if (nz > kParallelMin)
     for (Index z = 0; z < nz; ++z) {
+      if (!zone_active_[z]) continue;  // no flux, and no bounds computed
       const Index* lb = zone_list_.data() + zone_list_begin_[z];
       const Index* le = zone_list_.data() + zone_list_begin_[z + 1];
       double dm = 0;
@@ -537,11 +544,51 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
   const Index nz = m.num_zones(), np = m.num_points(), nc = m.num_corners();
   const std::size_t nf = f.specific.size();
 
+  // Where anything happens. A face whose ends did not move sweeps exactly zero area and
+  // moments, so a zone none of whose points moved neither gives nor takes anything: it needs
+  // no gradient, bounds or corner values (active zones do); a point gives momentum only
+  // through the centre segments of active zones, so only their points need a velocity
+  // gradient ("near" points, and the rz axis points, whose velocity is the reconstruction);
+  // the gradients read the old geometry of the zones around them ("near" zones). The values
+  // computed are the same bits as when every zone computes them (docs/ale.md, "Remap cost").
+  Index moved = 0;
+#pragma omp parallel for schedule(static) reduction(+ : moved) if (np > kParallelMin)
+  for (Index p = 0; p < np; ++p) {
+    point_moved_[p] = xn[p] != xo[p] || yn[p] != yo[p];
+    moved += point_moved_[p];
+  }
+  if (moved == np) {
+    std::fill(zone_active_.begin(), zone_active_.end(), 1);
+    std::fill(zone_near_.begin(), zone_near_.end(), 1);
+    std::fill(point_near_.begin(), point_near_.end(), 1);
+  } else {
+#pragma omp parallel for schedule(static) if (nz > kParallelMin)
+    for (Index z = 0; z < nz; ++z) {
+      char a = 0;
+      for (Index c = m.zone_corner_begin[z]; c < m.zone_corner_begin[z + 1]; ++c) a |= point_moved_[m.corner_point[c]];
+      zone_active_[z] = a;
+    }
+#pragma omp parallel for schedule(static) if (np > kParallelMin)
+    for (Index p = 0; p < np; ++p) {
+      char a = Rz && axis_point_[p];
+      for (Index k = m.point_corner_begin[p]; k < m.point_corner_begin[p + 1]; ++k)
+        a |= zone_active_[m.corner_zone[m.point_corners[k]]];
+      point_near_[p] = a;
+    }
+#pragma omp parallel for schedule(static) if (nz > kParallelMin)
+    for (Index z = 0; z < nz; ++z) {
+      char a = 0;
+      for (Index c = m.zone_corner_begin[z]; c < m.zone_corner_begin[z + 1]; ++c) a |= point_near_[m.corner_point[c]];
+      zone_near_[z] = a;
+    }
+  }
+
   // Old geometry: areas, centroids (the reconstruction's centres), densities, and the old
   // corners (x_k, mid(k, k+1), centre, mid(k-1, k)): their own densities m_c / A_c feed the
   // centre-segment fluxes, so that a corner never gives more than it holds.
 #pragma omp parallel for schedule(static) if (nz > kParallelMin)
   for (Index z = 0; z < nz; ++z) {
+    if (!zone_near_[z]) continue;
     const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
     const double x0 = xo[m.corner_point[b]], y0 = yo[m.corner_point[b]];
     double a2 = 0, sx = 0, sy = 0;
@@ -564,6 +611,7 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
       area_[z] = v, cx_[z] = mx / v, cy_[z] = my / v;
     }
     rho_[z] = f.zone_mass[z] / area_[z];
+    if (!zone_active_[z]) continue;
     double gox = 0, goy = 0;
     for (Index k = 0; k < n; ++k) gox += xo[m.corner_point[b + k]], goy += yo[m.corner_point[b + k]];
     gox /= n, goy /= n;
@@ -586,6 +634,7 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
   // Least-squares matrices.
 #pragma omp parallel for schedule(static) if (nz > kParallelMin)
   for (Index z = 0; z < nz; ++z) {
+    if (!zone_active_[z]) continue;
     double a = 0, b = 0, c = 0;
     for (Index k = zone_nbr_begin_[z]; k < zone_nbr_begin_[z + 1]; ++k) {
       const double dx = cx_[zone_nbr_[k]] - cx_[z], dy = cy_[zone_nbr_[k]] - cy_[z];
@@ -596,6 +645,7 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
   }
 #pragma omp parallel for schedule(static) if (np > kParallelMin)
   for (Index p = 0; p < np; ++p) {
+    if (!point_near_[p]) continue;
     double a = 0, b = 0, c = 0;
     for (Index k = point_nbr_begin_[p]; k < point_nbr_begin_[p + 1]; ++k) {
       const double dx = xo[point_nbr_[k]] - xo[p], dy = yo[point_nbr_[k]] - yo[p];
@@ -616,6 +666,7 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
   // reconstruction stays non-negative at its vertices.
 #pragma omp parallel for schedule(static) if (nz > kParallelMin)
   for (Index z = 0; z < nz; ++z) {
+    if (!zone_active_[z]) continue;
     const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
     const double gox = gox_[z], goy = goy_[z];
     if (grx_[z] == 0 && gry_[z] == 0) {  // nothing to limit (phi = 1)
@@ -657,6 +708,19 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
 #pragma omp parallel for schedule(static) if (nz > kParallelMin && !direct)
     for (Index z = 0; z < nz; ++z) {
       const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
+      if (!zone_active_[z]) {  // every face it owns sweeps nothing: empty slots, nothing to add
+        if (direct && !bound) continue;
+        for (Index c = b; c < b + n; ++c) {
+          if (side_zone_[c] > z)
+            for (std::size_t slot = 2 * static_cast<std::size_t>(c); slot < 2 * static_cast<std::size_t>(c) + 2;
+                 ++slot) {
+              flux_mass_[slot] = 0, flux_active_[slot] = 0;
+              for (std::size_t i = 0; i < nf; ++i) flux_q_[i * nc2 + slot] = 0;
+            }
+          if (!direct) flux_mass_[nc2 + c] = seg_px_[c] = seg_py_[c] = seg_ke_[c] = 0, flux_active_[nc2 + c] = 0;
+        }
+        continue;
+      }
       double gnx = 0, gny = 0;
       for (Index k = 0; k < n; ++k) {
         const Index p = m.corner_point[b + k];

@@ -100,6 +100,9 @@ class Remapper {
   std::vector<char> zone_hit_;
   std::vector<Index> bound_zones_;  // one thread: the zones where the donor remainder bound acts
   std::vector<char> zone_resum_;    // ... and the zones whose sums it changes
+  // Per remap: points that move, zones with a moving point (the only ones with fluxes), the
+  // points of those zones and the zones with such a point (remap_impl).
+  std::vector<char> point_moved_, zone_active_, point_near_, zone_near_;
   long repaired_ = 0;
 };
 

@@ -557,17 +557,22 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
     point_moved_[p] = xn[p] != xo[p] || yn[p] != yo[p];
     moved += point_moved_[p];
   }
-  if (moved == np) {
-    std::fill(zone_active_.begin(), zone_active_.end(), 1);
-    std::fill(zone_near_.begin(), zone_near_.end(), 1);
-    std::fill(point_near_.begin(), point_near_.end(), 1);
-  } else {
-#pragma omp parallel for schedule(static) if (nz > kParallelMin)
+  Index active = nz;
+  if (moved < np) {
+    active = 0;
+#pragma omp parallel for schedule(static) reduction(+ : active) if (nz > kParallelMin)
     for (Index z = 0; z < nz; ++z) {
       char a = 0;
       for (Index c = m.zone_corner_begin[z]; c < m.zone_corner_begin[z + 1]; ++c) a |= point_moved_[m.corner_point[c]];
       zone_active_[z] = a;
+      active += a;
     }
+  }
+  if (active == nz) {  // every zone has a moving point (a few fixed corners at most)
+    std::fill(zone_active_.begin(), zone_active_.end(), 1);
+    std::fill(zone_near_.begin(), zone_near_.end(), 1);
+    std::fill(point_near_.begin(), point_near_.end(), 1);
+  } else {
 #pragma omp parallel for schedule(static) if (np > kParallelMin)
     for (Index p = 0; p < np; ++p) {
       char a = Rz && axis_point_[p];

@@ -469,10 +469,15 @@ void Remapper::gather_fluxes(RemapFields& f, bool limiter) {
       }
     }
     if (any) {
-#pragma omp parallel for schedule(static) if (nz > kParallelMin)
-      for (Index z = 0; z < nz; ++z)
+      long bounded = 0;
+#pragma omp parallel for schedule(static) reduction(+ : bounded) if (nz > kParallelMin)
+      for (Index z = 0; z < nz; ++z) {
+        bool acted = false;
         for (std::size_t i = 0; i < nf; ++i)
-          if (keep_[i * nz + z] != 1.0) keep_outflows(f, z, i, keep_[i * nz + z]);
+          if (keep_[i * nz + z] != 1.0) keep_outflows(f, z, i, keep_[i * nz + z]), acted = true;
+        bounded += acted;
+      }
+      bounded_ += bounded;
     }
   }
 
@@ -853,9 +858,11 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
       bound_zones_.push_back(z);  // capacity nz: no allocation
       for (std::size_t i = 0; i < nf; ++i) keep_[i * nz + z] = remainder_keep(f, z, i, m0, m1);
     }
-    for (const Index z : bound_zones_)
+    for (const Index z : bound_zones_) {
+      bool acted = false;
       for (std::size_t i = 0; i < nf; ++i)
         if (keep_[i * nz + z] != 1.0) {
+          acted = true;
           keep_outflows(f, z, i, keep_[i * nz + z]);
           // The zone and the neighbours across its half sides: their sums again.
           zone_resum_[z] = 1;
@@ -864,6 +871,8 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
             zone_resum_[m.corner_zone[c]] = zone_resum_[side_zone_[c]] = 1;
           }
         }
+      bounded_ += acted;
+    }
     for (Index z = 0; z < nz; ++z) {
       if (!zone_resum_[z]) continue;
       zone_resum_[z] = 0;

@@ -51,6 +51,8 @@ class Remapper {
   const Mesh& mesh() const { return mesh_; }
   // Zones whose corner masses were reset so far (see remap()).
   long repaired_zones() const { return repaired_; }
+  // Zone remaps so far in which the donor remainder bound changed outflows (see remap()).
+  long bounded_zones() const { return bounded_; }
 
  private:
   template <bool Rz>
@@ -104,6 +106,7 @@ class Remapper {
   // points of those zones and the zones with such a point (remap_impl).
   std::vector<char> point_moved_, zone_active_, point_near_, zone_near_;
   long repaired_ = 0;
+  long bounded_ = 0;
 };
 
 }  // namespace stagger

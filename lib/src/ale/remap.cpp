@@ -105,8 +105,9 @@ inline double bj_factor(double q, double delta, double qmin, double qmax) {
 // by more than the rounding of that sum and division can give (a few dozen ulps of the bounds,
 // scaled by m0 / m1 for a zone that gives most of its mass away). The donor remainder bound is
 // for outflows that carried too much of the high or low values (a solid's energy went negative
-// by 2e6 J/kg so); a rounding is not that, and a bound acting on it would also cost the
-// one-thread remap its direct sums (docs/ale.md, "Remap cost"). NaN counts as outside.
+// by 2e6 J/kg so); a rounding is not that, and a bound acting on it would only add work (the
+// zones next to a changed flux are summed again, docs/ale.md "Remap cost"). NaN counts as
+// outside.
 inline bool beyond_bounds(double q1, double lo, double hi, double m0, double m1) {
   const double tol =
       64 * std::numeric_limits<double>::epsilon() * std::max(std::abs(lo), std::abs(hi)) * (std::max(m0, m1) / m1);

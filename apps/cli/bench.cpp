@@ -40,11 +40,14 @@ suites (default: all three):
                or burn materials)
   stress       random mesh perturbations, CFL sweeps and a 1e5-cycle run: what
                completed, what stopped and with which message, the energy audit
-  scaling      (not in the default set; needs mpirun) Sedov 1000 x 1000 for a few dozen
+  scaling      (not in the default set; needs mpirun) Sedov 1000 x 1000 for 24
                cycles on 1 rank x 1 thread, 2 ranks x 1 thread and 1 rank x 2 threads
                (median of --repeat runs), the halo messages, bytes and seconds per cycle
                and rank, and an 8-rank oversubscribed run checked bit for bit against
-               the serial one; writes scaling.csv (docs/parallel.md)
+               the serial one; beside them the machine's own scaling: a memory-bandwidth
+               probe (a triad over arrays far larger than the caches) and a compute
+               probe, each by 1 process, 2 processes at once and 2 threads; writes
+               scaling.csv (docs/parallel.md)
 
 options:
   --quick            2-3 smallest rungs of a few scenes and tiny throughput and stress

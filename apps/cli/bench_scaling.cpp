@@ -2,7 +2,8 @@
 // 1 rank x 1 thread, 2 ranks x 1 thread and 1 rank x 2 threads, the halo figures of the
 // distributed runs (messages, bytes and seconds per cycle and rank, from ranks.csv), and the
 // bitwise check of an 8-rank oversubscribed run against the serial one. Every run is a
-// `stagger run` child process (under mpirun for the distributed ones).
+// `stagger run` child process (under mpirun for the distributed ones). Beside them, the
+// machine's own 1 -> 2 core scaling: the memory bandwidth and compute probes (bench_probe.hpp).
 #include "bench_scaling.hpp"
 
 #include <sys/resource.h>
@@ -20,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_probe.hpp"
 #include "stagger/output.hpp"
 
 namespace stagger::cli::bench {
@@ -68,6 +70,9 @@ struct Measurement {
   // Peak resident set (docs/parallel.md, "Memory"): the sum over the ranks (ranks.csv), or
   // the run's own when serial.
   double peak_bytes = 0;
+  // The probes' rates (bytes/s of the triad, flop/s of the compute loop); 0 for the Sedov runs.
+  double bandwidth = 0, flops = 0;
+  bool probe = false;  // a probe's row: zones and cycles are its elements (iterations) and passes
 };
 
 // std::system, and the peak resident set of the largest process the command ran (wait4).
@@ -147,22 +152,82 @@ int scaling_suite(const fs::path& scenes, const fs::path& out_dir, bool quick, i
   const std::string stagger = fs::read_symlink("/proc/self/exe").string();
   const fs::path sedov = scenes / "sedov.toml";
   // Sedov n x n for a fixed number of cycles' worth of time (docs/parallel.md): 1M zones
-  // (the size) for ~20 s a run here; --quick: 40 000 zones.
+  // (the size), 24 cycles, so that the first cycle's fresh force evaluation is a small
+  // part of the loop; --quick: 40 000 zones, 42 cycles.
   const int n = quick ? 200 : 1000;
   const std::string sets =
       "--set mesh.nx=" + std::to_string(n) + " --set mesh.ny=" + std::to_string(n) +
-      " --set time.end=" + (quick ? std::string("2e-3") : std::string("1e-5")) +
+      " --set time.end=" + (quick ? std::string("2e-3") : std::string("1.8e-4")) +
       " --set output.dumps=false --set output.checkpoints=false --set output.history_every=1000000";
   if (repeat < 1) repeat = quick ? 1 : 3;
+  std::vector<Measurement> all;
+  std::ostringstream report;
+  // The machine's own scaling first (bench_probe.hpp): the triad over 3 arrays of 128 MiB
+  // (together 12x the 32 MiB last-level cache of the machine in docs/parallel.md; --quick:
+  // 32 MiB each), and the compute loop; each by 1 process, 2 processes at once and 2 threads.
+  const long triad_elements = quick ? (1L << 22) : (1L << 24);
+  const int triad_passes = quick ? 5 : 10;
+  const long compute_iterations = quick ? 10'000'000L : 50'000'000L;
+  struct ProbeConfig {
+    std::string name;
+    int workers;
+    bool threads;
+  };
+  const std::vector<ProbeConfig> probe_configs = {
+      {"1 process", 1, false}, {"2 processes", 2, false}, {"2 threads", 2, true}};
+  std::map<std::string, double> triad_rate, compute_rate;  // medians by "1 process", ...
+  for (const ProbeKind kind : {ProbeKind::triad, ProbeKind::compute}) {
+    const bool is_triad = kind == ProbeKind::triad;
+    std::map<std::string, double>& rates = is_triad ? triad_rate : compute_rate;
+    for (const ProbeConfig& c : probe_configs) {
+      std::vector<double> values;
+      for (int k = 0; k < repeat; ++k) {
+        Measurement m;
+        m.name = std::string(is_triad ? "triad " : "compute ") + c.name;
+        m.probe = true;
+        m.ranks = c.threads ? 1 : c.workers;
+        m.threads = c.threads ? c.workers : 1;
+        m.zones = static_cast<double>(is_triad ? triad_elements : compute_iterations);
+        m.cycles = is_triad ? triad_passes : 1;
+        m.load = load_average();
+        std::cerr << "[scaling] " << m.name << " (" << k + 1 << "/" << repeat << "), load " << m.load << "\n";
+        const ProbeResult r =
+            run_probe(kind, c.workers, c.threads, is_triad ? triad_elements : compute_iterations, triad_passes);
+        m.loop_seconds = r.seconds;
+        m.status = r.ok ? "completed" : "failed";
+        if (!r.ok) std::cerr << "stagger bench: scaling: " << m.name << ": " << r.message << "\n";
+        (is_triad ? m.bandwidth : m.flops) = r.ok ? r.rate() : 0;
+        if (r.ok) values.push_back(r.rate());
+        all.push_back(m);
+      }
+      double median = 0;
+      median_of(values, median);
+      rates[c.name] = median;
+    }
+    const double one = rates["1 process"];
+    const auto ratio = [&](const std::string& name) {
+      std::ostringstream text;
+      text.precision(3);
+      text << (one > 0 ? rates[name] / one : 0.0);
+      return text.str();
+    };
+    const double unit = 1e9;
+    const auto precision = report.precision(4);
+    report << (is_triad ? "  memory bandwidth (triad a = b + 3 c, 3 arrays of " +
+                              std::to_string(triad_elements * 8 / (1 << 20)) + " MiB, 24 bytes per element): "
+                        : std::string("  compute (32 chains x = x m + d in registers): "))
+           << "1 process " << one / unit << (is_triad ? " GB/s" : " Gflop/s") << ", 2 processes "
+           << rates["2 processes"] / unit << " (" << ratio("2 processes") << "x), 2 threads "
+           << rates["2 threads"] / unit << " (" << ratio("2 threads") << "x), medians\n";
+    report.precision(precision);
+  }
   struct Config {
     std::string name;
     int ranks, threads;
   };
   const std::vector<Config> configs = {
       {"1 rank x 1 thread", 1, 1}, {"2 ranks x 1 thread", 2, 1}, {"1 rank x 2 threads", 1, 2}};
-  std::vector<Measurement> all;
   std::map<std::string, double> median_rate;
-  std::ostringstream report;
   std::map<std::string, double> peak;
   for (const Config& c : configs) {
     std::vector<double> rates;
@@ -171,8 +236,12 @@ int scaling_suite(const fs::path& scenes, const fs::path& out_dir, bool quick, i
       m.name = c.name;
       std::cerr << "[scaling] sedov " << n << "x" << n << " " << c.name << " (" << k + 1 << "/" << repeat << "), load "
                 << load_average() << "\n";
-      run(stagger, sedov, sets, c.ranks, c.threads,
-          out_dir / "scaling_runs" / ("r" + std::to_string(c.ranks) + "t" + std::to_string(c.threads)), m);
+      // Appended, not `"r" + ...`: g++ 12 warns (-Wrestrict) wrongly on that sum once inlined here.
+      std::string dir = "r";
+      dir += std::to_string(c.ranks);
+      dir += 't';
+      dir += std::to_string(c.threads);
+      run(stagger, sedov, sets, c.ranks, c.threads, out_dir / "scaling_runs" / dir, m);
       if (m.status == "completed" && m.loop_seconds > 0) rates.push_back(m.zones * m.cycles / m.loop_seconds);
       if (m.status == "completed") peak[c.name] = std::max(peak[c.name], m.peak_bytes / m.zones);
       all.push_back(m);
@@ -203,12 +272,13 @@ int scaling_suite(const fs::path& scenes, const fs::path& out_dir, bool quick, i
   std::ostringstream csv;
   csv.precision(10);
   csv << "run,ranks,threads,zones,cycles,loop_seconds,zone_cycles_per_second,load_average,messages_per_cycle,"
-         "bytes_per_cycle,halo_seconds_per_cycle,ghost_fraction,peak_rss_bytes,status\n";
+         "bytes_per_cycle,halo_seconds_per_cycle,ghost_fraction,peak_rss_bytes,status,bandwidth_bytes_per_second,"
+         "compute_flops_per_second\n";
   for (const Measurement& m : all)
     csv << m.name << "," << m.ranks << "," << m.threads << "," << m.zones << "," << m.cycles << "," << m.loop_seconds
-        << "," << (m.loop_seconds > 0 ? m.zones * m.cycles / m.loop_seconds : 0) << "," << m.load << "," << m.messages
-        << "," << m.bytes << "," << m.halo_seconds << "," << m.ghost_fraction << "," << m.peak_bytes << "," << m.status
-        << "\n";
+        << "," << (m.loop_seconds > 0 && !m.probe ? m.zones * m.cycles / m.loop_seconds : 0) << "," << m.load << ","
+        << m.messages << "," << m.bytes << "," << m.halo_seconds << "," << m.ghost_fraction << "," << m.peak_bytes
+        << "," << m.status << "," << m.bandwidth << "," << m.flops << "\n";
   const fs::path csv_path = out_dir / "scaling.csv";
   write_file_atomically(csv_path.string(), csv.str());
   const double one = median_rate["1 rank x 1 thread"];
@@ -217,6 +287,14 @@ int scaling_suite(const fs::path& scenes, const fs::path& out_dir, bool quick, i
   if (one > 0)
     std::cout << "  speed-up 2 ranks / 1 rank: " << median_rate["2 ranks x 1 thread"] / one
               << ", 2 threads / 1 thread: " << median_rate["1 rank x 2 threads"] / one << "\n";
+  // The machine's ceilings beside them (docs/parallel.md, "Speed").
+  const auto gain = [](std::map<std::string, double>& rate, const std::string& who) {
+    return rate["1 process"] > 0 ? rate[who] / rate["1 process"] : 0.0;
+  };
+  std::cout << "  the machine from 1 to 2 cores: memory bandwidth " << gain(triad_rate, "2 processes")
+            << "x (2 processes), " << gain(triad_rate, "2 threads") << "x (2 threads); compute "
+            << gain(compute_rate, "2 processes") << "x (2 processes), " << gain(compute_rate, "2 threads")
+            << "x (2 threads)\n";
   std::cout << "  8 ranks (oversubscribed) vs serial, Sedov 40 x 40: "
             << (identical  ? "history.csv identical"
                 : both_ran ? "history.csv DIFFERS"

@@ -1,6 +1,9 @@
 // stagger: the command line. Every subcommand is a thin layer over the public API; this
 // file only dispatches and turns every error into exit status 1 and ONE line on stderr.
 #include <csignal>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <exception>
 #include <functional>
 #include <iostream>
@@ -103,6 +106,13 @@ int main(int argc, char** argv) {
   // A file-size limit (ulimit -f) then fails the write (EFBIG), reported like a full disk,
   // instead of killing the process with no message.
   std::signal(SIGXFSZ, SIG_IGN);
+#ifdef __GLIBC__
+  // A large mesh's arrays come and go in phases (the mesh build, the set-up, a distributed
+  // run's parts): with a fixed threshold each is mapped on its own and handed back to the
+  // system when freed, where glibc's sliding threshold keeps freed arrays resident in the
+  // heap and raises the peak (docs/parallel.md, "Memory").
+  mallopt(M_MMAP_THRESHOLD, 256 * 1024);
+#endif
   const std::vector<std::string> args(argv + 1, argv + argc);
   try {
     if (args.empty()) return fail("no command given; see 'stagger --help'");

@@ -3,7 +3,6 @@
 /// singleton that is not thread-safe: every use holds one mutex and one RAII session
 /// (initialize ... finalize), so no gmsh state leaks from one call to the next. Reading and
 /// meshing run in a forked child process (docs/mesh.md, "gmsh in a child process").
-#include <gmsh.h>
 #include <omp.h>
 
 #include <algorithm>
@@ -39,6 +38,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "gmsh_api.hpp"
 #include "stagger/error.hpp"
 #include "stagger/meshgen.hpp"
 
@@ -73,23 +73,23 @@ bool env_flag(const char* name) {
 }
 
 /// One gmsh session: initialize, quiet terminal, logger on; finalize on destruction.
-/// gmsh::initialize sets OpenMP to gmsh's own thread count (1): the caller's setting is
+/// gm::initialize sets OpenMP to gmsh's own thread count (1): the caller's setting is
 /// restored afterwards, so an in-process session does not leave stagger single-threaded.
 class GmshSession {
  public:
   GmshSession() : threads_(omp_get_max_threads()) {
-    gmsh::initialize(0, nullptr, false);
+    gm::initialize(0, nullptr, false);
     // STAGGER_GMSH_VERBOSE=1 shows gmsh's own messages (debugging a .geo).
-    gmsh::option::setNumber("General.Terminal", env_flag("STAGGER_GMSH_VERBOSE") ? 1 : 0);
+    gm::option::setNumber("General.Terminal", env_flag("STAGGER_GMSH_VERBOSE") ? 1 : 0);
     // Errors are read from the logger after each step: with the default (2) gmsh throws
     // from inside its mesher, where an exception can end in std::terminate.
-    gmsh::option::setNumber("General.AbortOnError", 0);
-    gmsh::logger::start();
+    gm::option::setNumber("General.AbortOnError", 0);
+    gm::logger::start();
   }
   ~GmshSession() {
     try {
-      gmsh::logger::stop();
-      gmsh::finalize();
+      gm::logger::stop();
+      gm::finalize();
     } catch (...) {  // a destructor must not throw; gmsh throws std::string
     }
     omp_set_num_threads(threads_);
@@ -100,7 +100,7 @@ class GmshSession {
   /// The first and last errors gmsh logged since the session started, or "".
   static std::string errors() {
     std::vector<std::string> log;
-    gmsh::logger::get(log);
+    gm::logger::get(log);
     std::string first;
     for (const auto& line : log)
       if (line.rfind("Error", 0) == 0) {
@@ -108,7 +108,7 @@ class GmshSession {
         break;
       }
     std::string last;
-    gmsh::logger::getLastError(last);
+    gm::logger::getLastError(last);
     for (std::string* text : {&first, &last}) {
       for (const char* prefix : {"Error   : ", "Error : ", "Error: "})
         if (text->rfind(prefix, 0) == 0) text->erase(0, std::string(prefix).size());
@@ -350,7 +350,7 @@ void scan_geo_file(const std::filesystem::path& file, std::set<std::filesystem::
 // --- Reading and meshing in a child process ---------------------------------------------
 // gmsh 4.8 trusts its input: a corrupt .msh, or a .geo that sets Mesh.Algorithm = 8 on a
 // surface, can crash it (segfault, double free); a .geo can loop for ever or exhaust
-// memory; and gmsh::initialize resets OpenMP to one thread. gmsh therefore runs in a forked
+// memory; and gm::initialize resets OpenMP to one thread. gmsh therefore runs in a forked
 // child that sends the soup (or the error) back through a pipe, under an address-space limit
 // (setrlimit RLIMIT_AS) and a wall-time limit (the parent kills it), with stdout silenced
 // unless STAGGER_GMSH_VERBOSE=1. Without allow_commands the child also runs in a seccomp
@@ -646,7 +646,16 @@ void out_of_memory() {
   }
   ::dup2(out_fd, 3);
   ::fcntl(3, F_SETFD, FD_CLOEXEC);  // programs the .geo may start (allowed) do not hold the pipe
-  ::close_range(4, ~0U, 0);         // no inherited files (outputs, checkpoints) stay open
+  // gmsh is loaded here, in the child alone (gmsh_api.hpp), before the limits below.
+  try {
+    gmsh_api();
+  } catch (const Error& error) {
+    Packer p;
+    p.value<std::uint8_t>(1);
+    p.string(error.what());
+    ::_exit(write_all(3, p.bytes()) ? 0 : 3);
+  }
+  ::close_range(4, ~0U, 0);  // no inherited files (outputs, checkpoints) stay open
   const rlimit no_core{0, 0};
   ::setrlimit(RLIMIT_CORE, &no_core);
   // A crash in gmsh gets the kernel's verdict (SIGSEGV, not a sanitizer's abort), so that the
@@ -807,7 +816,7 @@ void require_file(const std::string& path, const std::string& what) {
 
 std::string physical_name(int dim, int tag) {
   std::string name;
-  gmsh::model::getPhysicalName(dim, tag, name);
+  gm::model::getPhysicalName(dim, tag, name);
   if (!name.empty()) return name;
   return (dim == 2 ? "surface_" : "curve_") + std::to_string(tag);
 }
@@ -816,7 +825,7 @@ std::string element_name(int type) {
   std::string name;
   int dim = 0, order = 0, nodes = 0, primary = 0;
   std::vector<double> local;
-  gmsh::model::mesh::getElementProperties(type, name, dim, order, nodes, local, primary);
+  gm::model::mesh::getElementProperties(type, name, dim, order, nodes, local, primary);
   return name;
 }
 
@@ -830,16 +839,16 @@ PolygonSoup extract_soup(const std::string& path) {
 
   // Regions: physical surfaces by name; without any, every surface entity is a region.
   gmsh::vectorpair groups;
-  gmsh::model::getPhysicalGroups(groups, 2);
+  gm::model::getPhysicalGroups(groups, 2);
   std::vector<std::pair<std::string, std::vector<int>>> regions;
   if (groups.empty()) {
     gmsh::vectorpair entities;
-    gmsh::model::getEntities(entities, 2);
+    gm::model::getEntities(entities, 2);
     for (const auto& [dim, tag] : entities) regions.push_back({"surface_" + std::to_string(tag), {tag}});
   } else {
     for (const auto& [dim, tag] : groups) {
       std::vector<int> entities;
-      gmsh::model::getEntitiesForPhysicalGroup(dim, tag, entities);
+      gm::model::getEntitiesForPhysicalGroup(dim, tag, entities);
       regions.push_back({physical_name(dim, tag), entities});
     }
   }
@@ -855,7 +864,7 @@ PolygonSoup extract_soup(const std::string& path) {
                     it->second + "' and '" + regions[r].first + "'; a zone can belong to one region only");
       std::vector<int> types;
       std::vector<std::vector<std::size_t>> element_tags, node_tags;
-      gmsh::model::mesh::getElements(types, element_tags, node_tags, 2, entity);
+      gm::model::mesh::getElements(types, element_tags, node_tags, 2, entity);
       for (std::size_t k = 0; k < types.size(); ++k) {
         const std::size_t n = types[k] == kTriangle3 ? 3 : types[k] == kQuad4 ? 4 : 0;
         if (n == 0)
@@ -876,14 +885,14 @@ PolygonSoup extract_soup(const std::string& path) {
   // 2D elements in surfaces outside every physical surface are left out: say so.
   if (!groups.empty()) {
     gmsh::vectorpair surfaces;
-    gmsh::model::getEntities(surfaces, 2);
+    gm::model::getEntities(surfaces, 2);
     std::int64_t left_out = 0, kept = static_cast<std::int64_t>(soup.polygon_region.size());
     std::string which;
     for (const auto& [dim, tag] : surfaces) {
       if (entity_region.count(tag)) continue;
       std::vector<int> types;
       std::vector<std::vector<std::size_t>> element_tags, node_tags;
-      gmsh::model::mesh::getElements(types, element_tags, node_tags, 2, tag);
+      gm::model::mesh::getElements(types, element_tags, node_tags, 2, tag);
       std::int64_t here = 0;
       for (const auto& tags : element_tags) here += static_cast<std::int64_t>(tags.size());
       if (here == 0) continue;
@@ -904,21 +913,21 @@ PolygonSoup extract_soup(const std::string& path) {
 
   // Tags: physical curves, their 2-node line elements.
   gmsh::vectorpair curves;
-  gmsh::model::getPhysicalGroups(curves, 1);
+  gm::model::getPhysicalGroups(curves, 1);
   for (const auto& [dim, tag] : curves) {
     const int t = static_cast<int>(soup.tag_names.size());
     soup.tag_names.push_back(physical_name(dim, tag));
     std::vector<int> entities;
-    gmsh::model::getEntitiesForPhysicalGroup(dim, tag, entities);
+    gm::model::getEntitiesForPhysicalGroup(dim, tag, entities);
     std::size_t interfaces = 0, kept_entities = 0;
     for (int entity : entities) {
       // A partitioned mesh has curves between partitions (their parent is a surface, not
       // a model curve): they are no boundary, so they are no tag.
       std::vector<int> partitions;
-      gmsh::model::getPartitions(1, entity, partitions);
+      gm::model::getPartitions(1, entity, partitions);
       if (!partitions.empty()) {
         int parent_dim = -1, parent_tag = -1;
-        gmsh::model::getParent(1, entity, parent_dim, parent_tag);
+        gm::model::getParent(1, entity, parent_dim, parent_tag);
         if (parent_dim != 1) {
           ++interfaces;
           continue;
@@ -927,7 +936,7 @@ PolygonSoup extract_soup(const std::string& path) {
       ++kept_entities;
       std::vector<int> types;
       std::vector<std::vector<std::size_t>> element_tags, node_tags;
-      gmsh::model::mesh::getElements(types, element_tags, node_tags, 1, entity);
+      gm::model::mesh::getElements(types, element_tags, node_tags, 1, entity);
       for (std::size_t k = 0; k < types.size(); ++k) {
         if (types[k] != kLine2)
           throw Error(path + ": curve " + std::to_string(entity) + " of physical curve '" + soup.tag_names.back() +
@@ -957,7 +966,7 @@ PolygonSoup extract_soup(const std::string& path) {
   for (std::size_t i = 0; i < used.size(); ++i) index.emplace(used[i], static_cast<std::int64_t>(i));
   std::vector<std::size_t> node_tags;
   std::vector<double> coord, parametric;
-  gmsh::model::mesh::getNodes(node_tags, coord, parametric, -1, -1, false, false);
+  gm::model::mesh::getNodes(node_tags, coord, parametric, -1, -1, false, false);
   soup.x.assign(used.size(), 0.0);
   soup.y.assign(used.size(), 0.0);
   std::vector<char> found(used.size(), 0);
@@ -1031,7 +1040,7 @@ std::size_t count_triangles(const PolygonSoup& soup) {
 std::size_t gmsh_triangles() {
   std::vector<int> types;
   std::vector<std::vector<std::size_t>> element_tags, node_tags;
-  gmsh::model::mesh::getElements(types, element_tags, node_tags, 2, -1);
+  gm::model::mesh::getElements(types, element_tags, node_tags, 2, -1);
   std::size_t n = 0;
   for (std::size_t k = 0; k < types.size(); ++k)
     if (types[k] == kTriangle3) n += element_tags[k].size();
@@ -1043,11 +1052,11 @@ std::size_t gmsh_triangles() {
 /// the volume entities of the model it came from: there only volume elements count.
 void require_planar_model(const std::string& path, bool volume_entities_count) {
   gmsh::vectorpair volumes;
-  gmsh::model::getEntities(volumes, 3);
+  gm::model::getEntities(volumes, 3);
   if (volumes.empty()) return;
   std::vector<int> types;
   std::vector<std::vector<std::size_t>> element_tags, node_tags;
-  gmsh::model::mesh::getElements(types, element_tags, node_tags, 3, -1);
+  gm::model::mesh::getElements(types, element_tags, node_tags, 3, -1);
   std::size_t elements = 0;
   for (const auto& tags : element_tags) elements += tags.size();
   if (elements == 0 && !volume_entities_count) return;
@@ -1114,8 +1123,8 @@ void subdivide_soup(PolygonSoup& soup) {
 /// size halves).
 void subdivide_if_triangles() {
   if (gmsh_triangles() == 0) return;
-  gmsh::option::setNumber("Mesh.SubdivisionAlgorithm", 1);
-  gmsh::model::mesh::refine();
+  gm::option::setNumber("Mesh.SubdivisionAlgorithm", 1);
+  gm::model::mesh::refine();
 }
 
 void apply_policy(const PolygonSoup& soup, TrianglePolicy policy) {
@@ -1128,7 +1137,7 @@ void apply_policy(const PolygonSoup& soup, TrianglePolicy policy) {
 }
 
 /// Parameters of a .geo, like `gmsh -setnumber NAME VALUE`. gmsh 4.8 keeps -setnumber values
-/// passed to gmsh::initialize in a static table that finalize() does not clear, so they
+/// passed to gm::initialize in a static table that finalize() does not clear, so they
 /// would leak into every later file of the process. Instead, a small wrapper file defines
 /// the parameters and includes the .geo: DefineConstant keeps a value that is already
 /// defined, exactly as with -setnumber, and open() clears the parser variables each time.
@@ -1239,22 +1248,22 @@ PolygonSoup read_geo(const std::string& path, const GeoOptions& options) {
       "after which it does not recover from an error; run 'gmsh -2 " +
       path + "' to see where it fails";
   PolygonSoup soup = read_isolated(run, [&] {
-    gmsh::open(wrapper.file());
+    gm::open(wrapper.file());
     throw_if_gmsh_error(path, "reading");
     // Options after open(): the file may set its own. Algorithm 8 segfaults in Debian's
     // gmsh 4.8, so fall back to 6 (Frontal-Delaunay) and recombine.
     double algorithm = 0;
-    gmsh::option::getNumber("Mesh.Algorithm", algorithm);
-    if (algorithm == 8) gmsh::option::setNumber("Mesh.Algorithm", 6);
+    gm::option::getNumber("Mesh.Algorithm", algorithm);
+    if (algorithm == 8) gm::option::setNumber("Mesh.Algorithm", 6);
     if (options.recombine) {
-      gmsh::option::setNumber("Mesh.RecombineAll", 1);
+      gm::option::setNumber("Mesh.RecombineAll", 1);
       // 1: blossom. The full-quad variants (2, 3) fail ("1D mesh cannot be divided by 2")
       // on transfinite curves with an odd number of segments, so the subdivide policy
       // recombines with blossom too and then subdivides if triangles are left.
-      gmsh::option::setNumber("Mesh.RecombinationAlgorithm", 1);
+      gm::option::setNumber("Mesh.RecombinationAlgorithm", 1);
     }
     require_planar_model(path, true);
-    gmsh::model::mesh::generate(2);
+    gm::model::mesh::generate(2);
     throw_if_gmsh_error(path, "meshing");
     if (options.triangles == TrianglePolicy::subdivide) {
       subdivide_if_triangles();
@@ -1285,7 +1294,7 @@ PolygonSoup read_msh(const std::string& path, const GeoOptions& options) {
       "check it with 'gmsh " +
       path + " -0' or re-export it";
   PolygonSoup soup = read_isolated(run, [&] {
-    gmsh::open(path);
+    gm::open(path);
     throw_if_gmsh_error(path, "reading");
     require_planar_model(path, false);
     return extract_soup(path);
@@ -1318,11 +1327,11 @@ void write_msh(const std::string& path, const Mesh& mesh) {
                   " corners; MSH stores only triangles and quadrangles");
   }
   with_gmsh(path, [&] {
-    gmsh::model::add("stagger");
+    gm::model::add("stagger");
     // One discrete surface per region (tag r+1), one discrete curve per boundary tag.
     // All nodes live on the first region's surface; elements may use any node.
     const Index nregions = mesh.num_regions();
-    for (Index r = 0; r < nregions; ++r) gmsh::model::addDiscreteEntity(2, r + 1);
+    for (Index r = 0; r < nregions; ++r) gm::model::addDiscreteEntity(2, r + 1);
     const int node_entity = mesh.zone_region[0] + 1;
     std::vector<std::size_t> node_tags(static_cast<std::size_t>(mesh.num_points()));
     std::vector<double> coord(3 * node_tags.size(), 0.0);
@@ -1331,7 +1340,7 @@ void write_msh(const std::string& path, const Mesh& mesh) {
       coord[3 * p] = mesh.x[p];
       coord[3 * p + 1] = mesh.y[p];
     }
-    gmsh::model::mesh::addNodes(2, node_entity, node_tags, coord);
+    gm::model::mesh::addNodes(2, node_entity, node_tags, coord);
     std::size_t element = 1;
     for (Index r = 0; r < nregions; ++r) {
       std::vector<std::size_t> tri_tags, tri_nodes, quad_tags, quad_nodes;
@@ -1342,27 +1351,27 @@ void write_msh(const std::string& path, const Mesh& mesh) {
         tags.push_back(element++);
         for (Index c = b; c < e; ++c) nodes.push_back(static_cast<std::size_t>(mesh.corner_point[c]) + 1);
       }
-      if (!tri_tags.empty()) gmsh::model::mesh::addElementsByType(r + 1, kTriangle3, tri_tags, tri_nodes);
-      if (!quad_tags.empty()) gmsh::model::mesh::addElementsByType(r + 1, kQuad4, quad_tags, quad_nodes);
-      gmsh::model::addPhysicalGroup(2, {r + 1}, r + 1);
-      gmsh::model::setPhysicalName(2, r + 1, mesh.region_names[static_cast<std::size_t>(r)]);
+      if (!tri_tags.empty()) gm::model::mesh::addElementsByType(r + 1, kTriangle3, tri_tags, tri_nodes);
+      if (!quad_tags.empty()) gm::model::mesh::addElementsByType(r + 1, kQuad4, quad_tags, quad_nodes);
+      gm::model::addPhysicalGroup(2, {r + 1}, r + 1);
+      gm::model::setPhysicalName(2, r + 1, mesh.region_names[static_cast<std::size_t>(r)]);
     }
     for (std::size_t t = 0; t < mesh.tags.size(); ++t) {
       const int entity = static_cast<int>(t) + 1;
-      gmsh::model::addDiscreteEntity(1, entity);
+      gm::model::addDiscreteEntity(1, entity);
       std::vector<std::size_t> line_tags, line_nodes;
       for (const auto& edge : mesh.tags[t].edges) {
         line_tags.push_back(element++);
         line_nodes.push_back(static_cast<std::size_t>(edge[0]) + 1);
         line_nodes.push_back(static_cast<std::size_t>(edge[1]) + 1);
       }
-      if (!line_tags.empty()) gmsh::model::mesh::addElementsByType(entity, kLine2, line_tags, line_nodes);
-      gmsh::model::addPhysicalGroup(1, {entity}, entity);
-      gmsh::model::setPhysicalName(1, entity, mesh.tags[t].name);
+      if (!line_tags.empty()) gm::model::mesh::addElementsByType(entity, kLine2, line_tags, line_nodes);
+      gm::model::addPhysicalGroup(1, {entity}, entity);
+      gm::model::setPhysicalName(1, entity, mesh.tags[t].name);
     }
-    gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
-    gmsh::option::setNumber("Mesh.Binary", 1);  // exact doubles (ASCII MSH prints 16 digits)
-    gmsh::write(path);
+    gm::option::setNumber("Mesh.MshFileVersion", 4.1);
+    gm::option::setNumber("Mesh.Binary", 1);  // exact doubles (ASCII MSH prints 16 digits)
+    gm::write(path);
     throw_if_gmsh_error(path, "writing");
   });
 }

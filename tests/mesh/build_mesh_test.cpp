@@ -42,6 +42,34 @@ PolygonSoup reversed_polygons(const PolygonSoup& soup, bool every_other) {
   return out;
 }
 
+// side_twins on a mixed mesh (three quads, two triangles on a 3 x 3 grid of points): each
+// interior side's twin runs back along it, twins pair up, and only the 8 perimeter sides have none.
+TEST(BuildMesh, SideTwinsPairTheInteriorSides) {
+  std::vector<std::pair<double, double>> pts;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) pts.push_back({i, j});
+  const Mesh m = build_mesh(soup_of(pts, {{0, 1, 4, 3}, {1, 2, 5, 4}, {3, 4, 7, 6}, {4, 5, 8}, {4, 8, 7}}));
+  const std::vector<Index> twin = side_twins(m);
+  ASSERT_EQ(twin.size(), static_cast<std::size_t>(m.num_corners()));
+  const auto next = [&](Index c) {
+    const Index z = m.corner_zone[c];
+    return c + 1 == m.zone_corner_begin[z + 1] ? m.zone_corner_begin[z] : c + 1;
+  };
+  int boundary = 0;
+  for (Index c = 0; c < m.num_corners(); ++c) {
+    if (twin[c] < 0) {
+      ++boundary;
+      continue;
+    }
+    EXPECT_NE(m.corner_zone[twin[c]], m.corner_zone[c]);
+    EXPECT_EQ(twin[twin[c]], c);
+    EXPECT_EQ(m.corner_point[twin[c]], m.corner_point[next(c)]);
+    EXPECT_EQ(m.corner_point[next(twin[c])], m.corner_point[c]);
+  }
+  EXPECT_EQ(boundary, 8);
+  EXPECT_EQ(m.num_corners() - boundary, 10);
+}
+
 TEST(BuildMesh, ClockwiseSoupIsReversedToCounterClockwise) {
   const PolygonSoup soup = reversed_polygons(meshgen::rectangle(0, 3, 0, 2, 6, 4), false);
   MeshBuildReport report;

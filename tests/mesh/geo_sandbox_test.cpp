@@ -46,6 +46,25 @@ class GeoSandbox : public ::testing::Test {
   fs::path directory_;
 };
 
+// Whether gmsh's library is mapped into this process.
+bool gmsh_mapped() {
+  std::ifstream maps("/proc/self/maps");
+  std::string line;
+  while (std::getline(maps, line))
+    if (line.find("libgmsh") != std::string::npos) return true;
+  return false;
+}
+
+// gmsh is loaded by the child that meshes, never by the process that asks (docs/mesh.md,
+// "gmsh in a child process"): about 35 MiB of every process's resident set, and of every
+// rank's in a distributed run (docs/parallel.md, "Memory").
+TEST_F(GeoSandbox, OnlyTheChildLoadsGmsh) {
+  ASSERT_FALSE(gmsh_mapped()) << "the test binary itself maps gmsh: a library links it";
+  const std::string geo = write("square.geo", kSquare);
+  EXPECT_EQ(build_mesh(meshgen::read_geo(geo)).num_zones(), 21);
+  EXPECT_FALSE(gmsh_mapped());
+}
+
 // --- The command scan -------------------------------------------------------------------
 
 TEST_F(GeoSandbox, ScanFindsCommandsAndNamesFileAndLine) {

@@ -79,10 +79,9 @@ struct Mesh {
 
 /// What build_mesh repaired or dropped, for the user to read.
 struct MeshBuildReport {
-  int reoriented_zones = 0;  ///< clockwise zones turned counter-clockwise
-  int dropped_points = 0;
-  double topology_seconds =
-      0;  ///< wall time of the CGAL topology check (0 when skipped)          ///< orphan points removed
+  int reoriented_zones = 0;        ///< clockwise zones turned counter-clockwise
+  int dropped_points = 0;          ///< orphan points removed
+  double topology_seconds = 0;     ///< wall time of the CGAL topology check (0 when skipped)
   std::vector<std::string> notes;  ///< one line per repair, for the user
 };
 
@@ -117,5 +116,12 @@ MeshQuality mesh_quality(const Mesh& mesh);
 double zone_area(const Mesh& mesh, Index z);
 /// Centre of zone z: the average of its vertices (where initial fields are evaluated).
 std::array<double, 2> zone_centre(const Mesh& mesh, Index z);
+
+/// The twin of each corner's side (the side of corner c runs from corner_point[c] to the next
+/// corner's point): the corner of the zone across whose side runs back along it, so it sits at
+/// the far end of c's side; -1 where the side is on the boundary. One pass over the
+/// point-corner lists, no map; the heat flux, the edge viscosity's continuation and the remap
+/// take their neighbours across sides from it.
+std::vector<Index> side_twins(const Mesh& mesh);
 
 }  // namespace stagger

@@ -21,7 +21,6 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
-#include <unordered_map>
 
 #include "hydro/kernels/zone_status.hpp"
 #include "stagger/error.hpp"
@@ -105,8 +104,9 @@ inline double bj_factor(double q, double delta, double qmin, double qmax) {
 // by more than the rounding of that sum and division can give (a few dozen ulps of the bounds,
 // scaled by m0 / m1 for a zone that gives most of its mass away). The donor remainder bound is
 // for outflows that carried too much of the high or low values (a solid's energy went negative
-// by 2e6 J/kg so); a rounding is not that, and a bound acting on it would also cost the
-// one-thread remap its direct sums (docs/ale.md, "Remap cost"). NaN counts as outside.
+// by 2e6 J/kg so); a rounding is not that, and a bound acting on it would only add work (the
+// zones next to a changed flux are summed again, docs/ale.md "Remap cost"). NaN counts as
+// outside.
 inline bool beyond_bounds(double q1, double lo, double hi, double m0, double m1) {
   const double tol =
       64 * std::numeric_limits<double>::epsilon() * std::max(std::abs(lo), std::abs(hi)) * (std::max(m0, m1) / m1);
@@ -136,22 +136,18 @@ Remapper::Remapper(const Mesh& mesh, std::span<const int> zone_material, bool rz
   side_corner0_.assign(nc, -1);
   side_corner1_.assign(nc, -1);
   boundary_point_.assign(np, 0);
-  auto key = [](Index a, Index b) { return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b); };
-  std::unordered_map<std::uint64_t, Index> side_of;  // directed side (a, b) -> corner
-  side_of.reserve(nc);
   auto next_corner = [&](Index c) {
     const Index z = mesh.corner_zone[c];
     return c + 1 == mesh.zone_corner_begin[z + 1] ? mesh.zone_corner_begin[z] : c + 1;
   };
-  for (Index c = 0; c < nc; ++c) side_of[key(mesh.corner_point[c], mesh.corner_point[next_corner(c)])] = c;
+  const std::vector<Index> twin = side_twins(mesh);
   for (Index c = 0; c < nc; ++c) {
-    const Index a = mesh.corner_point[c], b = mesh.corner_point[next_corner(c)];
-    const auto it = side_of.find(key(b, a));
+    const Index a = mesh.corner_point[c], b = mesh.corner_point[next_corner(c)], t = twin[c];
     const Index z = mesh.corner_zone[c];
-    if (it != side_of.end() && zone_material[mesh.corner_zone[it->second]] == zone_material[z]) {
-      side_zone_[c] = mesh.corner_zone[it->second];
-      side_corner1_[c] = it->second;               // its corner at b
-      side_corner0_[c] = next_corner(it->second);  // its corner at a
+    if (t >= 0 && zone_material[mesh.corner_zone[t]] == zone_material[z]) {
+      side_zone_[c] = mesh.corner_zone[t];
+      side_corner1_[c] = t;               // its corner at b
+      side_corner0_[c] = next_corner(t);  // its corner at a
     } else {
       boundary_point_[a] = boundary_point_[b] = 1;
     }
@@ -250,6 +246,12 @@ Remapper::Remapper(const Mesh& mesh, std::span<const int> zone_material, bool rz
   zone_dm_.assign(nz, 0.0);
   corner_dm_.assign(nc, 0.0);
   zone_hit_.assign(nz, 0);
+  zone_resum_.assign(nz, 0);
+  zone_active_.assign(nz, 1);
+  zone_near_.assign(nz, 1);
+  point_moved_.assign(np, 1);
+  point_near_.assign(np, 1);
+  bound_zones_.reserve(nz);
 }
 
 int Remapper::substeps(const double* xo, const double* yo, const double* xn, const double* yn, double fraction) const {
@@ -279,6 +281,7 @@ void Remapper::zone_gradients(const double* q, bool limiter, double* gx, double*
   const Index nz = m.num_zones();
 #pragma omp parallel for schedule(static) if (nz > kParallelMin)
   for (Index z = 0; z < nz; ++z) {
+    if (!zone_active_[z]) continue;  // gives nothing (remap_impl)
     gx[z] = gy[z] = 0;
     if (lo) lo[z] = hi[z] = q[z];
     if (!std::isfinite(q[z])) continue;
@@ -331,6 +334,7 @@ void Remapper::point_gradients(const double* qa, const double* qb, bool limiter,
   const Index np = mesh_.num_points();
 #pragma omp parallel for schedule(static) if (np > kParallelMin)
   for (Index p = 0; p < np; ++p) {
+    if (!point_near_[p]) continue;  // gives nothing (remap_impl)
     const double* q[2] = {qa, qb};
     double bx[2] = {0, 0}, by[2] = {0, 0}, qmin[2] = {qa[p], qb[p]}, qmax[2] = {qa[p], qb[p]};
     for (Index k = point_nbr_begin_[p]; k < point_nbr_begin_[p + 1]; ++k) {
@@ -376,6 +380,53 @@ void Remapper::remap(const double* xo, const double* yo, const double* xn, const
     remap_impl<false>(xo, yo, xn, yn, f, limiter);
 }
 
+// The donor's remainder (limiter only): each outflow's mean value is within the donor's
+// bounds, but a zone that gives away much of its mass can be left with a value outside them
+// (its outflows carried more than their share of the high or low values; a solid's specific
+// energy went negative this way). Where that happens, the zone's outflows' deviations from
+// its own value are scaled by the largest factor in [0, 1] that keeps its new value within
+// its bounds (factor 0: the outflows carry the zone's value, and the new value is a mean of
+// that and the inflows). It only changes fluxes, so it conserves, and it leaves every other
+// zone's arithmetic as it was. This is the factor of field i in zone z (1: within bounds),
+// from the half-side slots as the fluxes left them; m1 = m0 + the slots' mass sum.
+double Remapper::remainder_keep(const RemapFields& f, Index z, std::size_t i, double m0, double m1) const {
+  const double q = f.specific[i][z];
+  if (!std::isfinite(q)) return 1.0;
+  const Index nz = mesh_.num_zones();
+  const std::size_t nc2 = 2 * static_cast<std::size_t>(mesh_.num_corners());
+  const Index* lb = zone_list_.data() + zone_list_begin_[z];
+  const Index* le = zone_list_.data() + zone_list_begin_[z + 1];
+  const double* fq = flux_q_.data() + i * nc2;
+  double all = 0, first = 0;  // with the outflows as they are, and carrying q
+  for (const Index* e = lb; e != le; ++e) {
+    const std::size_t sl = *e >> 1;
+    const double sign = (*e & 1) ? -1.0 : 1.0, mass = sign * flux_mass_[sl], v = sign * fq[sl];
+    all += v;
+    first += mass < 0 ? mass * q : v;
+  }
+  const std::size_t id = i * nz + z;
+  const double lo = qmin_[id], hi = qmax_[id];
+  const double q1 = (m0 * q + all) / m1;
+  if (!beyond_bounds(q1, lo, hi, m0, m1)) return 1.0;
+  const double q0 = (m0 * q + first) / m1, bound = q1 > hi ? hi : lo;
+  const double t = (q1 > hi ? q0 < hi : q0 > lo) ? (bound - q0) / (q1 - q0) : 0.0;
+  return std::clamp(t, 0.0, 1.0);
+}
+
+// Zone z's outflows of field i keep the fraction t of their deviation from z's value.
+void Remapper::keep_outflows(const RemapFields& f, Index z, std::size_t i, double t) {
+  const std::size_t nc2 = 2 * static_cast<std::size_t>(mesh_.num_corners());
+  const Index* lb = zone_list_.data() + zone_list_begin_[z];
+  const Index* le = zone_list_.data() + zone_list_begin_[z + 1];
+  const double q = f.specific[i][z];
+  double* fq = flux_q_.data() + i * nc2;
+  for (const Index* e = lb; e != le; ++e) {
+    const std::size_t sl = *e >> 1;
+    const double mass = (*e & 1) ? -flux_mass_[sl] : flux_mass_[sl];
+    if (mass < 0) fq[sl] = flux_mass_[sl] * q + t * (fq[sl] - flux_mass_[sl] * q);  // z's outflow
+  }
+}
+
 // The sums of the slots per zone, corner and point, in the serial sweep's order (bitwise the
 // same on any number of threads), and the new zone and corner values; a list entry's low bit
 // says whether the flux is added or taken.
@@ -394,19 +445,13 @@ void Remapper::gather_fluxes(RemapFields& f, bool limiter) {
     }
     return s;
   };
-  // The donor's remainder (limiter only): each outflow's mean value is within the donor's
-  // bounds, but a zone that gives away much of its mass can be left with a value outside them
-  // (its outflows carried more than their share of the high or low values; a solid's specific
-  // energy went negative this way). Where that happens, the zone's outflows' deviations from
-  // its own value are scaled by the largest factor in [0, 1] that keeps its new value within
-  // its bounds (factor 0: the outflows carry the zone's value, and the new value is a mean of
-  // that and the inflows). It only changes fluxes, so it conserves, and it leaves every other
-  // zone's arithmetic as it was.
+  // The donor remainder bound (remainder_keep), from every zone's factors before any flux changes.
   if (limiter && remainder_bound_ && nf > 0) {
     keep_.assign(nf * static_cast<std::size_t>(nz), 1.0);
     int any = 0;
 #pragma omp parallel for schedule(static) reduction(max : any) if (nz > kParallelMin)
     for (Index z = 0; z < nz; ++z) {
+      if (!zone_active_[z]) continue;  // no flux, and no bounds computed
       const Index* lb = zone_list_.data() + zone_list_begin_[z];
       const Index* le = zone_list_.data() + zone_list_begin_[z + 1];
       double dm = 0;
@@ -414,43 +459,21 @@ void Remapper::gather_fluxes(RemapFields& f, bool limiter) {
       const double m0 = f.zone_mass[z], m1 = m0 + dm;
       if (!(m1 > 0)) continue;
       for (std::size_t i = 0; i < nf; ++i) {
-        const double q = f.specific[i][z];
-        if (!std::isfinite(q)) continue;
-        const double* fq = flux_q_.data() + i * nc2;
-        double all = 0, first = 0;  // with the outflows as they are, and carrying q
-        for (const Index* e = lb; e != le; ++e) {
-          const std::size_t sl = *e >> 1;
-          const double sign = (*e & 1) ? -1.0 : 1.0, mass = sign * flux_mass_[sl], v = sign * fq[sl];
-          all += v;
-          first += mass < 0 ? mass * q : v;
-        }
-        const std::size_t id = i * nz + z;
-        const double lo = qmin_[id], hi = qmax_[id];
-        const double q1 = (m0 * q + all) / m1;
-        if (!beyond_bounds(q1, lo, hi, m0, m1)) continue;
-        const double q0 = (m0 * q + first) / m1, bound = q1 > hi ? hi : lo;
-        const double t = (q1 > hi ? q0 < hi : q0 > lo) ? (bound - q0) / (q1 - q0) : 0.0;
-        keep_[id] = std::clamp(t, 0.0, 1.0);
-        any = 1;
+        const double t = remainder_keep(f, z, i, m0, m1);
+        keep_[i * nz + z] = t;
+        any = std::max(any, t != 1.0 ? 1 : 0);
       }
     }
     if (any) {
-#pragma omp parallel for schedule(static) if (nz > kParallelMin)
+      long bounded = 0;
+#pragma omp parallel for schedule(static) reduction(+ : bounded) if (nz > kParallelMin)
       for (Index z = 0; z < nz; ++z) {
-        const Index* lb = zone_list_.data() + zone_list_begin_[z];
-        const Index* le = zone_list_.data() + zone_list_begin_[z + 1];
-        for (std::size_t i = 0; i < nf; ++i) {
-          const double t = keep_[i * nz + z];
-          if (t == 1.0) continue;
-          const double q = f.specific[i][z];
-          double* fq = flux_q_.data() + i * nc2;
-          for (const Index* e = lb; e != le; ++e) {
-            const std::size_t sl = *e >> 1;
-            const double mass = (*e & 1) ? -flux_mass_[sl] : flux_mass_[sl];
-            if (mass < 0) fq[sl] = flux_mass_[sl] * q + t * (fq[sl] - flux_mass_[sl] * q);  // z's outflow
-          }
-        }
+        bool acted = false;
+        for (std::size_t i = 0; i < nf; ++i)
+          if (keep_[i * nz + z] != 1.0) keep_outflows(f, z, i, keep_[i * nz + z]), acted = true;
+        bounded += acted;
       }
+      bounded_ += bounded;
     }
   }
 
@@ -522,11 +545,56 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
   const Index nz = m.num_zones(), np = m.num_points(), nc = m.num_corners();
   const std::size_t nf = f.specific.size();
 
+  // Where anything happens. A face whose ends did not move sweeps exactly zero area and
+  // moments, so a zone none of whose points moved neither gives nor takes anything: it needs
+  // no gradient, bounds or corner values (active zones do); a point gives momentum only
+  // through the centre segments of active zones, so only their points need a velocity
+  // gradient ("near" points, and the rz axis points, whose velocity is the reconstruction);
+  // the gradients read the old geometry of the zones around them ("near" zones). The values
+  // computed are the same bits as when every zone computes them (docs/ale.md, "Remap cost").
+  Index moved = 0;
+#pragma omp parallel for schedule(static) reduction(+ : moved) if (np > kParallelMin)
+  for (Index p = 0; p < np; ++p) {
+    point_moved_[p] = xn[p] != xo[p] || yn[p] != yo[p];
+    moved += point_moved_[p];
+  }
+  Index active = nz;
+  if (moved < np) {
+    active = 0;
+#pragma omp parallel for schedule(static) reduction(+ : active) if (nz > kParallelMin)
+    for (Index z = 0; z < nz; ++z) {
+      char a = 0;
+      for (Index c = m.zone_corner_begin[z]; c < m.zone_corner_begin[z + 1]; ++c) a |= point_moved_[m.corner_point[c]];
+      zone_active_[z] = a;
+      active += a;
+    }
+  }
+  if (active == nz) {  // every zone has a moving point (a few fixed corners at most)
+    std::fill(zone_active_.begin(), zone_active_.end(), 1);
+    std::fill(zone_near_.begin(), zone_near_.end(), 1);
+    std::fill(point_near_.begin(), point_near_.end(), 1);
+  } else {
+#pragma omp parallel for schedule(static) if (np > kParallelMin)
+    for (Index p = 0; p < np; ++p) {
+      char a = Rz && axis_point_[p];
+      for (Index k = m.point_corner_begin[p]; k < m.point_corner_begin[p + 1]; ++k)
+        a |= zone_active_[m.corner_zone[m.point_corners[k]]];
+      point_near_[p] = a;
+    }
+#pragma omp parallel for schedule(static) if (nz > kParallelMin)
+    for (Index z = 0; z < nz; ++z) {
+      char a = 0;
+      for (Index c = m.zone_corner_begin[z]; c < m.zone_corner_begin[z + 1]; ++c) a |= point_near_[m.corner_point[c]];
+      zone_near_[z] = a;
+    }
+  }
+
   // Old geometry: areas, centroids (the reconstruction's centres), densities, and the old
   // corners (x_k, mid(k, k+1), centre, mid(k-1, k)): their own densities m_c / A_c feed the
   // centre-segment fluxes, so that a corner never gives more than it holds.
 #pragma omp parallel for schedule(static) if (nz > kParallelMin)
   for (Index z = 0; z < nz; ++z) {
+    if (!zone_near_[z]) continue;
     const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
     const double x0 = xo[m.corner_point[b]], y0 = yo[m.corner_point[b]];
     double a2 = 0, sx = 0, sy = 0;
@@ -549,6 +617,7 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
       area_[z] = v, cx_[z] = mx / v, cy_[z] = my / v;
     }
     rho_[z] = f.zone_mass[z] / area_[z];
+    if (!zone_active_[z]) continue;
     double gox = 0, goy = 0;
     for (Index k = 0; k < n; ++k) gox += xo[m.corner_point[b + k]], goy += yo[m.corner_point[b + k]];
     gox /= n, goy /= n;
@@ -571,6 +640,7 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
   // Least-squares matrices.
 #pragma omp parallel for schedule(static) if (nz > kParallelMin)
   for (Index z = 0; z < nz; ++z) {
+    if (!zone_active_[z]) continue;
     double a = 0, b = 0, c = 0;
     for (Index k = zone_nbr_begin_[z]; k < zone_nbr_begin_[z + 1]; ++k) {
       const double dx = cx_[zone_nbr_[k]] - cx_[z], dy = cy_[zone_nbr_[k]] - cy_[z];
@@ -581,6 +651,7 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
   }
 #pragma omp parallel for schedule(static) if (np > kParallelMin)
   for (Index p = 0; p < np; ++p) {
+    if (!point_near_[p]) continue;
     double a = 0, b = 0, c = 0;
     for (Index k = point_nbr_begin_[p]; k < point_nbr_begin_[p + 1]; ++k) {
       const double dx = xo[point_nbr_[k]] - xo[p], dy = yo[point_nbr_[k]] - yo[p];
@@ -601,6 +672,7 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
   // reconstruction stays non-negative at its vertices.
 #pragma omp parallel for schedule(static) if (nz > kParallelMin)
   for (Index z = 0; z < nz; ++z) {
+    if (!zone_active_[z]) continue;
     const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
     const double gox = gox_[z], goy = goy_[z];
     if (grx_[z] == 0 && gry_[z] == 0) {  // nothing to limit (phi = 1)
@@ -628,6 +700,8 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
   // of its cells instead, in the order in which the gathers below would add it: the same
   // bits without the slots' second pass (docs/ale.md, "Remap cost").
   const std::size_t nc2 = 2 * static_cast<std::size_t>(nc);
+  const bool bound = limiter && remainder_bound_ && nf > 0;  // the donor remainder bound needs the half sides' slots
+  if (bound) keep_.resize(nf * static_cast<std::size_t>(nz), 1.0);
   const auto fluxes = [&](const bool direct) {
     if (direct) {
       std::fill(zone_dm_.begin(), zone_dm_.end(), 0.0);
@@ -640,6 +714,19 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
 #pragma omp parallel for schedule(static) if (nz > kParallelMin && !direct)
     for (Index z = 0; z < nz; ++z) {
       const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
+      if (!zone_active_[z]) {  // every face it owns sweeps nothing: empty slots, nothing to add
+        if (direct && !bound) continue;
+        for (Index c = b; c < b + n; ++c) {
+          if (side_zone_[c] > z)
+            for (std::size_t slot = 2 * static_cast<std::size_t>(c); slot < 2 * static_cast<std::size_t>(c) + 2;
+                 ++slot) {
+              flux_mass_[slot] = 0, flux_active_[slot] = 0;
+              for (std::size_t i = 0; i < nf; ++i) flux_q_[i * nc2 + slot] = 0;
+            }
+          if (!direct) flux_mass_[nc2 + c] = seg_px_[c] = seg_py_[c] = seg_ke_[c] = 0, flux_active_[nc2 + c] = 0;
+        }
+        continue;
+      }
       double gnx = 0, gny = 0;
       for (Index k = 0; k < n; ++k) {
         const Index p = m.corner_point[b + k];
@@ -670,7 +757,7 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
             const double bx1 = h == 0 ? mnx : xn[pb], by1 = h == 0 ? mny : yn[pb];
             const Swept s0 = swept_quad<Rz>(ax0, ay0, ax1, ay1, bx1, by1, bx0, by0, 0.0, 0.0);
             if (s0.area == 0 && s0.mx == 0 && s0.my == 0) {
-              if (direct) continue;  // adds nothing
+              if (direct && !bound) continue;  // adds nothing
               flux_mass_[slot] = 0, flux_active_[slot] = 0;
               for (std::size_t i = 0; i < nf; ++i) flux_q_[i * nc2 + slot] = 0;
               continue;
@@ -692,9 +779,8 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
               zone_dm_[z] += flux, zone_dm_[nb] -= flux;
               corner_dm_[left] += flux, corner_dm_[right] -= flux;
               zone_hit_[z] = zone_hit_[nb] = 1;
-            } else {
-              flux_mass_[slot] = flux, flux_active_[slot] = 1;
             }
+            if (!direct || bound) flux_mass_[slot] = flux, flux_active_[slot] = 1;
             for (std::size_t i = 0; i < nf; ++i) {
               const double qd = f.specific[i][d];
               double fq = 0;
@@ -711,10 +797,8 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
                   fq = std::clamp(fq, std::min(lo, hi), std::max(lo, hi));
                 }
               }
-              if (direct)
-                zone_dq_[i * nz + z] += fq, zone_dq_[i * nz + nb] -= fq;
-              else
-                flux_q_[i * nc2 + slot] = fq;
+              if (direct) zone_dq_[i * nz + z] += fq, zone_dq_[i * nz + nb] -= fq;
+              if (!direct || bound) flux_q_[i * nc2 + slot] = fq;
             }
           }
         }
@@ -746,27 +830,63 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
       }
     }
   };
-  bool direct = nz <= kParallelMin || omp_get_max_threads() == 1;
+  const bool direct = nz <= kParallelMin || omp_get_max_threads() == 1;
   fluxes(direct);
-  // The donor remainder bound (gather_fluxes) changes fluxes, and the direct sums cannot undo
-  // a flux once added: where it would act (a zone's new value outside its bounds, tested on
-  // the same sums in the same order as there), the fluxes are computed again into the slots.
-  if (direct && limiter && remainder_bound_)
-    for (Index z = 0; z < nz && direct; ++z) {
+  // The donor remainder bound (remainder_keep) on the direct sums: the half sides' fluxes are
+  // in their slots too; where the bound acts (a zone's new value outside its bounds, tested
+  // on the same sums as gather_fluxes tests), the factors of all such zones are taken first,
+  // then their outflows changed, and the zones next to a changed flux summed again from the
+  // slots in the same order: bitwise what gather_fluxes gives.
+  if (direct && bound) {
+    bound_zones_.clear();
+    for (Index z = 0; z < nz; ++z) {
+      if (!zone_hit_[z]) continue;  // no flux: its value stays (a rounding at most)
       const double m0 = f.zone_mass[z], m1 = m0 + zone_dm_[z];
       if (!(m1 > 0)) continue;
-      for (std::size_t i = 0; i < nf; ++i) {
+      bool acts = false;
+      for (std::size_t i = 0; i < nf && !acts; ++i) {
         const double q = f.specific[i][z];
         if (!std::isfinite(q)) continue;
         const std::size_t id = i * nz + z;
-        const double q1 = (m0 * q + zone_dq_[id]) / m1;
-        if (beyond_bounds(q1, qmin_[id], qmax_[id], m0, m1)) {
-          direct = false;
-          break;
+        acts = beyond_bounds((m0 * q + zone_dq_[id]) / m1, qmin_[id], qmax_[id], m0, m1);
+      }
+      if (!acts) continue;
+      bound_zones_.push_back(z);  // capacity nz: no allocation
+      for (std::size_t i = 0; i < nf; ++i) keep_[i * nz + z] = remainder_keep(f, z, i, m0, m1);
+    }
+    for (const Index z : bound_zones_) {
+      bool acted = false;
+      for (std::size_t i = 0; i < nf; ++i)
+        if (keep_[i * nz + z] != 1.0) {
+          acted = true;
+          keep_outflows(f, z, i, keep_[i * nz + z]);
+          // The zone and the neighbours across its half sides: their sums again.
+          zone_resum_[z] = 1;
+          for (Index e = zone_list_begin_[z]; e < zone_list_begin_[z + 1]; ++e) {
+            const Index c = zone_list_[e] >> 2;  // slot 2c + h
+            zone_resum_[m.corner_zone[c]] = zone_resum_[side_zone_[c]] = 1;
+          }
         }
+      bounded_ += acted;
+    }
+    for (Index z = 0; z < nz; ++z) {
+      if (!zone_resum_[z]) continue;
+      zone_resum_[z] = 0;
+      const Index* lb = zone_list_.data() + zone_list_begin_[z];
+      const Index* le = zone_list_.data() + zone_list_begin_[z + 1];
+      for (std::size_t i = 0; i < nf; ++i) {
+        const double* fq = flux_q_.data() + i * nc2;
+        double sum = 0;
+        for (const Index* e = lb; e != le; ++e) {
+          if (*e & 1)
+            sum -= fq[*e >> 1];
+          else
+            sum += fq[*e >> 1];
+        }
+        zone_dq_[i * nz + z] = sum;
       }
     }
-  if (!direct && (nz <= kParallelMin || omp_get_max_threads() == 1)) fluxes(false);
+  }
 
   Index failed_zone = std::numeric_limits<Index>::max();
   if (direct) {

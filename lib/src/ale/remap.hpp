@@ -54,11 +54,15 @@ class Remapper {
   // The donor remainder bound of the limited remap (docs/ale.md, "Reconstruction and limiter"),
   // on by default; off only for the tests that show what it prevents.
   void set_remainder_bound(bool on) { remainder_bound_ = on; }
+  // Zone remaps so far in which the donor remainder bound changed outflows (see remap()).
+  long bounded_zones() const { return bounded_; }
 
  private:
   template <bool Rz>
   void remap_impl(const double* xo, const double* yo, const double* xn, const double* yn, RemapFields& f, bool limiter);
   void gather_fluxes(RemapFields& f, bool limiter);
+  double remainder_keep(const RemapFields& f, Index z, std::size_t i, double m0, double m1) const;
+  void keep_outflows(const RemapFields& f, Index z, std::size_t i, double t);
   void zone_gradients(const double* q, bool limiter, double* gx, double* gy, double* lo, double* hi);
   void point_gradients(const double* qa, const double* qb, bool limiter, double* gax, double* gay, double* gbx,
                        double* gby);
@@ -99,8 +103,14 @@ class Remapper {
   // On one thread the fluxes go straight into these sums (and dm_point_, ...) instead.
   std::vector<double> zone_dm_, corner_dm_, zone_dq_;
   std::vector<char> zone_hit_;
+  std::vector<Index> bound_zones_;  // one thread: the zones where the donor remainder bound acts
+  std::vector<char> zone_resum_;    // ... and the zones whose sums it changes
+  // Per remap: points that move, zones with a moving point (the only ones with fluxes), the
+  // points of those zones and the zones with such a point (remap_impl).
+  std::vector<char> point_moved_, zone_active_, point_near_, zone_near_;
   long repaired_ = 0;
   bool remainder_bound_ = true;
+  long bounded_ = 0;
 };
 
 }  // namespace stagger

@@ -151,16 +151,20 @@ ZoneVertices zone_vertices(const Mesh& mesh, Index z, const double* x, const dou
 }
 
 // The weighted sums S_k of a stencil; N > 0 fixes the neighbour count at compile time.
+// The x and y sums side by side (s[2k], s[2k + 1]), so that each weight multiplies both
+// coordinates in one vector operation: the same products and sums, lane by lane.
 template <int N>
 [[gnu::always_inline]] inline void stencil_sums(const Index* points, int n, const double* w, const double* xs,
                                                 const double* ys, double* sx, double* sy) {
+  double s[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
   for (int i = 0; i < (N ? N : n); ++i) {
     const double xq = xs[points[i]], yq = ys[points[i]];
     for (int k = 0; k < 5; ++k) {
-      sx[k] += w[5 * i + k] * xq;
-      sy[k] += w[5 * i + k] * yq;
+      s[2 * k] += w[5 * i + k] * xq;
+      s[2 * k + 1] += w[5 * i + k] * yq;
     }
   }
+  for (int k = 0; k < 5; ++k) sx[k] += s[2 * k], sy[k] += s[2 * k + 1];
 }
 
 // One Gauss-Seidel update of point p by the Winslow equations (docs/ale.md, "Rezone"):
@@ -586,13 +590,21 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& rc, const RezoneO
   for (Index p = 0; p < np; ++p) {
     double shortest2 = std::numeric_limits<double>::infinity();
     if (rc.kind[p] != RezonePointKind::fixed) {
+      // An interior point has no boundary edge: each of its edges belongs to two zones, run
+      // once each way (the zones are all counter-clockwise), so its next points are all its
+      // neighbours and its previous points the same again. The minimum is then the same.
+      const bool closed = rc.kind[p] == RezonePointKind::interior;
+      const double xp = x_lag[p], yp = y_lag[p];
       for (Index i = mesh.point_corner_begin[p]; i < mesh.point_corner_begin[p + 1]; ++i) {
         const Index c = mesh.point_corners[i], z = mesh.corner_zone[c];
         const Index b = mesh.zone_corner_begin[z], e = mesh.zone_corner_begin[z + 1];
-        for (const Index q : {mesh.corner_point[c + 1 == e ? b : c + 1], mesh.corner_point[c == b ? e - 1 : c - 1]}) {
-          const double dx = x_lag[q] - x_lag[p], dy = y_lag[q] - y_lag[p];
-          shortest2 = std::min(shortest2, dx * dx + dy * dy);
-        }
+        const Index next = mesh.corner_point[c + 1 == e ? b : c + 1];
+        const double nx = x_lag[next] - xp, ny = y_lag[next] - yp;
+        shortest2 = std::min(shortest2, nx * nx + ny * ny);
+        if (closed) continue;
+        const Index prev = mesh.corner_point[c == b ? e - 1 : c - 1];
+        const double px = x_lag[prev] - xp, py = y_lag[prev] - yp;
+        shortest2 = std::min(shortest2, px * px + py * py);
       }
     }
     ws.move_limit[p] = limit_factor * std::sqrt(shortest2);

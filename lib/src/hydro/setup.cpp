@@ -46,11 +46,8 @@ std::string zone_label(const Mesh& m, Index z) {
 // Points that continue each zone edge into the neighbouring zones (edge viscosity limiter).
 void setup_edge_continuation(Simulation::Impl& s) {
   const Mesh& m = s.mesh();
-  std::map<std::pair<Index, Index>, Index> edge_zone;  // directed edge (a, b) -> zone having it
-  for (Index z = 0; z < m.num_zones(); ++z) {
-    const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
-    for (Index k = 0; k < n; ++k) edge_zone[{m.corner_point[b + k], m.corner_point[b + (k + 1) % n]}] = z;
-  }
+  const std::vector<Index> twin = side_twins(m);  // per corner: the corner across its side
+  const auto across = [&](Index c) { return twin[c] < 0 ? -1 : m.corner_zone[twin[c]]; };
   // Ratio used where an edge has no neighbour: 1 (mirror image) at walls, symmetry planes,
   // pistons and periodic sides; 0 at free and pressure boundaries (docs/algorithm.md §5).
   std::map<std::pair<Index, Index>, float> boundary_ratio;
@@ -81,8 +78,8 @@ void setup_edge_continuation(Simulation::Impl& s) {
       const Index p2 = m.corner_point[b + (k + 2) % n], pm = m.corner_point[b + (k + n - 1) % n];
       EdgeContinuation& ec = s.continuation[b + k];
       // Ahead: beyond p1, in the zone across edge (p1, p2) (it holds that edge as (p2, p1)).
-      if (auto it = edge_zone.find({p2, p1}); it != edge_zone.end()) {
-        ec.ahead = other_neighbour(it->second, p1, p2);
+      if (const Index zn = across(b + (k + 1) % n); zn >= 0) {
+        ec.ahead = other_neighbour(zn, p1, p2);
       } else if (mirror_edges.count({p1, p2})) {
         ec.ahead = mirror_code(p2);
       } else {
@@ -90,8 +87,8 @@ void setup_edge_continuation(Simulation::Impl& s) {
         ec.ahead = (r != boundary_ratio.end() && r->second > 0) ? kContinuationOpen : kContinuationFree;
       }
       // Behind: beyond p0, in the zone across edge (pm, p0).
-      if (auto it = edge_zone.find({p0, pm}); it != edge_zone.end()) {
-        ec.behind = other_neighbour(it->second, p0, pm);
+      if (const Index zn = across(b + (k + n - 1) % n); zn >= 0) {
+        ec.behind = other_neighbour(zn, p0, pm);
       } else if (mirror_edges.count({pm, p0})) {
         ec.behind = mirror_code(pm);
       } else {

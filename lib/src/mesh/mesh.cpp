@@ -52,6 +52,28 @@ std::array<double, 2> zone_centre(const Mesh& mesh, Index z) {
       [&](int k) { return mesh.y[mesh.corner_point[begin + k]]; });
 }
 
+std::vector<Index> side_twins(const Mesh& m) {
+  std::vector<Index> twin(m.num_corners(), -1);
+  for (Index z = 0; z < m.num_zones(); ++z) {
+    const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
+    for (Index k = 0; k < n; ++k) {
+      const Index p0 = m.corner_point[b + k], p1 = m.corner_point[b + (k + 1 == n ? 0 : k + 1)];
+      // The corner of another zone at p1 whose side runs back to p0 (a checked mesh is
+      // manifold: at most one).
+      for (Index i = m.point_corner_begin[p1]; i < m.point_corner_begin[p1 + 1]; ++i) {
+        const Index c = m.point_corners[i], zn = m.corner_zone[c];
+        if (zn == z) continue;
+        const Index bn = m.zone_corner_begin[zn], nn = m.zone_corner_begin[zn + 1] - bn;
+        if (m.corner_point[c + 1 == bn + nn ? bn : c + 1] == p0) {
+          twin[b + k] = c;
+          break;
+        }
+      }
+    }
+  }
+  return twin;
+}
+
 MeshQuality mesh_quality(const Mesh& mesh) {
   MeshQuality q;
   if (mesh.num_zones() == 0) return q;

@@ -16,6 +16,7 @@
 #include <metis.h>
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <climits>
 #include <cmath>
@@ -31,6 +32,7 @@
 #include "ale/rezone.hpp"
 #include "hydro/collective.hpp"
 #include "hydro/kernels/zone_status.hpp"
+#include "hydro/physics_digest.hpp"
 #include "hydro/simulation_impl.hpp"
 #include "hydro/state_fields.hpp"
 #include "stagger/error.hpp"
@@ -144,31 +146,65 @@ Part make_part(const Mesh& m, const std::vector<int>& owner, int rank, int layer
 }
 
 // The mesh of a part: the same arrays as the serial mesh, restricted and renumbered in the
-// same order (so each point's corners stay in the serial order).
-Mesh part_mesh(const Mesh& m, const Part& part) {
+// same order (so each point's corners stay in the serial order). They are made one at a time
+// and handed to `each(member, array)` in the order part_arrays() sends them, so that rank 0
+// holds one array of a part beside the whole problem, not the part's mesh
+// (docs/parallel.md, "Memory").
+template <class F>
+void part_mesh_arrays(const Mesh& m, const Part& part, F&& each) {
+  const auto np = static_cast<Index>(part.points.size());
+  {
+    std::vector<double> v;
+    v.reserve(part.points.size());
+    for (Index p : part.points) v.push_back(m.x[p]);
+    each(&Mesh::x, v);
+    v.clear();
+    for (Index p : part.points) v.push_back(m.y[p]);
+    each(&Mesh::y, v);
+  }
+  std::vector<Index> v;
+  v.reserve(part.zones.size() + 1);
+  v.push_back(0);
+  for (Index z : part.zones) v.push_back(v.back() + m.zone_corner_begin[z + 1] - m.zone_corner_begin[z]);
+  const std::size_t corners = static_cast<std::size_t>(v.back());
+  each(&Mesh::zone_corner_begin, v);
+  const auto for_corners = [&](auto&& body) {  // (local zone, whole-mesh corner)
+    for (std::size_t i = 0; i < part.zones.size(); ++i)
+      for (Index c = m.zone_corner_begin[part.zones[i]]; c < m.zone_corner_begin[part.zones[i] + 1]; ++c)
+        body(static_cast<Index>(i), c);
+  };
+  v.clear();
+  v.reserve(corners);
+  for_corners([&](Index, Index c) { v.push_back(part.point_local[m.corner_point[c]]); });
+  each(&Mesh::corner_point, v);
+  v.clear();
+  for_corners([&](Index z, Index) { v.push_back(z); });
+  each(&Mesh::corner_zone, v);
+  std::vector<Index> begin(np + 1, 0);
+  for_corners([&](Index, Index c) { ++begin[part.point_local[m.corner_point[c]] + 1]; });
+  for (Index p = 0; p < np; ++p) begin[p + 1] += begin[p];
+  v = begin;
+  each(&Mesh::point_corner_begin, v);
+  v.assign(corners, 0);
+  Index local_corner = 0;
+  for_corners([&](Index, Index c) { v[begin[part.point_local[m.corner_point[c]]]++] = local_corner++; });
+  begin = {};
+  each(&Mesh::point_corners, v);
+  v.clear();
+  for (Index z : part.zones) v.push_back(m.zone_region[z]);
+  each(&Mesh::zone_region, v);
+  v.assign(m.num_regions() + 1, 0);
+  for (Index z : part.zones) ++v[m.zone_region[z] + 1];
+  for (Index r = 0; r < m.num_regions(); ++r) v[r + 1] += v[r];
+  each(&Mesh::region_zone_begin, v);
+}
+
+// A part's mesh without its arrays: the source, the region names and the tags (the edges of
+// the part's zones, in the serial order).
+Mesh part_names(const Mesh& m, const Part& part) {
   Mesh local;
   local.source = m.source;
   local.region_names = m.region_names;
-  for (Index p : part.points) local.x.push_back(m.x[p]), local.y.push_back(m.y[p]);
-  local.region_zone_begin.assign(m.num_regions() + 1, 0);
-  for (Index z : part.zones) {
-    for (Index c = m.zone_corner_begin[z]; c < m.zone_corner_begin[z + 1]; ++c) {
-      local.corner_zone.push_back(static_cast<Index>(local.zone_region.size()));
-      local.corner_point.push_back(part.point_local[m.corner_point[c]]);
-    }
-    local.zone_corner_begin.push_back(local.num_corners());
-    local.zone_region.push_back(m.zone_region[z]);
-    ++local.region_zone_begin[m.zone_region[z] + 1];
-  }
-  for (Index r = 0; r < m.num_regions(); ++r) local.region_zone_begin[r + 1] += local.region_zone_begin[r];
-  const Index np = local.num_points();
-  local.point_corner_begin.assign(np + 1, 0);
-  for (Index p : local.corner_point) ++local.point_corner_begin[p + 1];
-  for (Index p = 0; p < np; ++p) local.point_corner_begin[p + 1] += local.point_corner_begin[p];
-  local.point_corners.resize(local.corner_point.size());
-  std::vector<Index> fill(local.point_corner_begin.begin(), local.point_corner_begin.end() - 1);
-  for (Index c = 0; c < local.num_corners(); ++c) local.point_corners[fill[local.corner_point[c]]++] = c;
-  // Tags: the edges of the part's zones, in the serial order.
   for (const BoundaryTag& tag : m.tags) {
     BoundaryTag t;
     t.name = tag.name;
@@ -214,10 +250,10 @@ class MpiCollective final : public Collective {
   MPI_Comm comm = MPI_COMM_NULL;
   int my_rank = 0, size = 1;
   std::vector<Neighbour> neighbours;
-  std::vector<const StateField*> fields;                  // the present state arrays, in table order
-  std::vector<const StateField*> gathered_fields;         // those the whole state on rank 0 serves
-  std::vector<const StateField*> remap_fields;            // those an ALE remap changes: the remapped ones, x and y
-  std::vector<Index> own_points, own_zones, own_corners;  // own_corners: ALE only (corner masses)
+  std::vector<const StateField*> fields;           // the present state arrays, in table order
+  std::vector<const StateField*> gathered_fields;  // those the whole state on rank 0 serves
+  std::vector<const StateField*> remap_fields;     // those an ALE remap changes: the remapped ones, x and y
+  std::vector<Index> own_corners;  // ALE only (the corner masses); own points and zones: the ghost flags
   // Rank 0: the whole state (only its gathered arrays, or all of them for an ALE remap), and
   // every rank's owned points, zones and (ALE) corners, global; the gather's buffers are
   // transient (docs/parallel.md, "Memory").
@@ -365,20 +401,34 @@ class MpiCollective final : public Collective {
     std::vector<double> send, recv;
     std::vector<int> counts, offsets;
     for (const StateField* f : list) {
-      const auto& own = f->entity == Entity::point ? own_points : f->entity == Entity::zone ? own_zones : own_corners;
       const auto& ids = [&](int q) -> const std::vector<Index>& {
         return f->entity == Entity::point  ? rank_points[q]
                : f->entity == Entity::zone ? rank_zones[q]
                                            : rank_corners[q];
       };
       const double* values = (s.*(f->member)).data();
+      // This rank's owned values, in its (ascending global) order.
+      const auto each_owned = [&](auto&& use) {
+        if (f->entity == Entity::corner) {
+          for (Index i : own_corners) use(values[i]);
+        } else {
+          const std::vector<unsigned char>& ghost = f->entity == Entity::point ? s.ghost_point : s.ghost_zone;
+          for (std::size_t i = 0; i < ghost.size(); ++i)
+            if (!ghost[i]) use(values[i]);
+        }
+      };
       send.clear();
-      for (Index i : own) send.push_back(values[i]);
-      if (my_rank == 0) {
+      if (my_rank != 0) {
+        send.reserve(f->entity == Entity::corner  ? own_corners.size()
+                     : f->entity == Entity::point ? s.ghost_point.size()
+                                                  : s.ghost_zone.size());
+        each_owned([&](double v) { send.push_back(v); });
+      } else {
+        // Rank 0 writes its own values straight into the whole array (no buffer of them).
         counts.assign(size, 0), offsets.assign(size, 0);
-        for (int q = 0; q < size; ++q) {
+        for (int q = 1; q < size; ++q) {
           counts[q] = static_cast<int>(ids(q).size());
-          offsets[q] = q == 0 ? 0 : offsets[q - 1] + counts[q - 1];
+          offsets[q] = offsets[q - 1] + counts[q - 1];
         }
         recv.resize(static_cast<std::size_t>(offsets[size - 1]) + counts[size - 1]);
       }
@@ -394,8 +444,10 @@ class MpiCollective final : public Collective {
                                                   : m.num_corners();
       if (whole_array.size() != static_cast<std::size_t>(n)) whole_array.assign(n, 0.0);
       double* whole_values = whole_array.data();
+      const Index* mine = ids(0).data();
+      each_owned([&](double v) { whole_values[*mine++] = v; });
       const double* in = recv.data();
-      for (int q = 0; q < size; ++q)
+      for (int q = 1; q < size; ++q)
         for (Index i : ids(q)) whole_values[i] = *in++;
     }
     if (my_rank != 0) return;
@@ -423,7 +475,8 @@ class MpiCollective final : public Collective {
     if (!due && o.quality_trigger > 0) {
       const Mesh& m = s.mesh();
       double worst = std::numeric_limits<double>::infinity();
-      for (Index z : own_zones) {
+      for (Index z = 0; z < static_cast<Index>(s.ghost_zone.size()); ++z) {
+        if (s.ghost_zone[z]) continue;
         const double q = zone_quality(m, z, QualityMeasure::reference_shape, s.x, s.y, m.x, m.y);
         if (q < worst) worst = q;
       }
@@ -612,7 +665,7 @@ template <class F>
 void part_arrays(Part& part, Mesh& m, F&& each) {
   each(part.zones), each(part.points), each(m.x), each(m.y), each(m.zone_corner_begin), each(m.corner_point);
   each(m.corner_zone), each(m.point_corner_begin), each(m.point_corners), each(m.zone_region);
-  each(m.region_zone_begin);
+  each(m.region_zone_begin);  // the order of part_mesh_arrays()
 }
 
 template <class T>
@@ -745,7 +798,7 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
   // copy of the mesh first, so they never hold more than the scene's mesh and their part.
   // METIS runs before the set-up (which keeps the mesh's connectivity), so that its work
   // space is handed back before the whole state is built (docs/parallel.md, "Memory").
-  std::vector<int> owner;  // global zone -> rank
+  std::vector<int> owner;  // global zone -> rank (rank 0; the others get it once set up)
   on_every_rank(c, [&] {
     if (rank != 0) return;  // the other ranks' mesh may be an outline (load_scene_without_mesh)
     if (problem.mesh.num_zones() < size)
@@ -761,52 +814,50 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
   problem = Problem{};
   malloc_trim(0);  // the other ranks' copy of the mesh, before their part arrives
   const Simulation::Impl* g = rank == 0 ? &DistributedAccess::impl(*whole) : nullptr;
-  int sizes[2] = {g ? g->mesh().num_zones() : 0, g ? g->mesh().num_points() : 0};
-  MPI_Bcast(sizes, 2, MPI_INT, 0, c);
-  const Index global_zones = sizes[0], global_points = sizes[1];
-  owner.resize(global_zones, 0);
-  MPI_Bcast(owner.data(), global_zones, MPI_INT, 0, c);
-  std::vector<Index> per_rank(size, 0);
-  for (int o : owner) ++per_rank[o];
-  for (int q = 0; q < size; ++q)
-    if (per_rank[q] == 0) throw Error("METIS left rank " + std::to_string(q) + " without zones; run on fewer ranks");
-  // A point belongs to the lowest rank among its zones' owners.
-  std::vector<int> point_owner(global_points, INT_MAX);
+  int sizes[3] = {g ? g->mesh().num_zones() : 0, g ? g->mesh().num_points() : 0, -1};
   if (g) {
-    const Mesh& m = g->mesh();
-    for (Index z = 0; z < m.num_zones(); ++z)
-      for (Index k = m.zone_corner_begin[z]; k < m.zone_corner_begin[z + 1]; ++k)
-        point_owner[m.corner_point[k]] = std::min(point_owner[m.corner_point[k]], owner[z]);
+    std::vector<Index> per_rank(size, 0);
+    for (int o : owner) ++per_rank[o];
+    for (int q = size - 1; q >= 0; --q)
+      if (per_rank[q] == 0) sizes[2] = q;
   }
-  MPI_Bcast(point_owner.data(), global_points, MPI_INT, 0, c);
+  MPI_Bcast(sizes, 3, MPI_INT, 0, c);
+  const Index global_zones = sizes[0], global_points = sizes[1];
+  if (sizes[2] >= 0) throw Error("METIS left rank " + std::to_string(sizes[2]) + " without zones; run on fewer ranks");
 
-  // Rank 0 cuts each part (mesh, walls, configuration) and sends it; the last is its own.
-  // The state arrays follow once every rank has set its part up, one message per array, so
-  // that no rank holds its part's state twice (docs/parallel.md, "Memory").
+  // Rank 0 cuts each other rank's part (mesh, walls, configuration) and sends it; its own
+  // part's mesh it cuts once the whole state is gone (below). The state arrays follow once
+  // every rank has set its part up, one message per array, so that no rank holds its part's
+  // state twice (docs/parallel.md, "Memory").
   std::string packed;
-  std::vector<std::vector<Index>> part_zones, part_points;  // rank 0: every part's, global
+  std::vector<std::vector<Index>> part_zones, part_points;  // rank 0: every other part's, global
   Part part;
+  // Two layers: the corner forces of the zones around this rank's points and their predicted
+  // velocities; a third for the edge viscosity's neighbours (docs/parallel.md).
+  const int layers = g && g->edge_viscosity ? 3 : 2;
   if (g) {
     part_zones.resize(size);
     part_points.resize(size);
-    for (int q = size - 1; q >= 0; --q) {
-      // Two layers: the corner forces of the zones around this rank's points and their
-      // predicted velocities; a third for the edge viscosity's neighbours (docs/parallel.md).
-      part = make_part(g->mesh(), owner, q, g->edge_viscosity ? 3 : 2);
-      part_problem.mesh = part_mesh(g->mesh(), part);
+    for (int q = size - 1; q >= 1; --q) {
+      part = make_part(g->mesh(), owner, q, layers);
       std::string().swap(packed);  // (a move from an empty string keeps the buffer)
-      packed = pack_part(*g, part_problem.mesh);
-      part_zones[q] = part.zones;
-      part_points[q] = part.points;
-      if (q == 0) break;
+      packed = pack_part(*g, part_names(g->mesh(), part));
       if (packed.size() > static_cast<std::size_t>(INT_MAX))
         throw Error("the part of rank " + std::to_string(q) + " is too large for one MPI message (" +
                     std::to_string(packed.size()) + " bytes); run on more ranks");
       MPI_Send(packed.data(), static_cast<int>(packed.size()), MPI_BYTE, q, kHaloTag, c);
-      part_arrays(part, part_problem.mesh, [&](const auto& v) { send_array(v, q, c); });
+      send_array(part.zones, q, c);
+      send_array(part.points, q, c);
+      part_mesh_arrays(g->mesh(), part, [&](auto, const auto& v) { send_array(v, q, c); });
+      part_zones[q] = std::move(part.zones);
+      part_points[q] = std::move(part.points);
       part = Part{};
-      part_problem.mesh = Mesh{};
+      std::string().swap(packed);
     }
+    // Rank 0's own zones and points; the global-to-local maps are rebuilt for its mesh.
+    part = make_part(g->mesh(), owner, 0, layers);
+    part.zone_local = {};
+    part.point_local = {};
     malloc_trim(0);  // the parts' meshes and the other ranks' packed parts
   } else {
     MPI_Status status;
@@ -818,22 +869,26 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
     part_arrays(part, part_problem.mesh, [&](auto& v) { receive_array(v, c); });
   }
   std::string rest;  // what follows the mesh (flags, scalars, walls): read after the set-up
-  {
-    Unpacker in(packed);
-    unpack_mesh(in, part_problem.mesh);
-    rest = packed.substr(in.at);
+  const auto unpack_names = [&] {
+    Unpacker names(packed);
+    unpack_mesh(names, part_problem.mesh);
+    rest = packed.substr(names.at);
     std::string().swap(packed);
-  }
+  };
+  if (!g) unpack_names();
   Unpacker in(rest);
-  part.zone_local.assign(global_zones, -1);
-  part.point_local.assign(global_points, -1);
-  for (std::size_t i = 0; i < part.zones.size(); ++i) part.zone_local[part.zones[i]] = static_cast<Index>(i);
-  for (std::size_t i = 0; i < part.points.size(); ++i) part.point_local[part.points[i]] = static_cast<Index>(i);
   // A part's set-up, then the whole problem's configuration read from `rest`.
   std::unique_ptr<Simulation> local;
   const auto set_up_part = [&] {
+    // ALE: the part's set-up builds no remap of its own (its work space is the size of the
+    // part's mesh): the distributed one (MpiCollective::remap) runs the whole problem's on
+    // rank 0. The part's ALE arrays come with the state below; the digest is the ALE one.
+    const AleOptions ale = part_problem.ale;
+    part_problem.ale.mode = AleMode::lagrangian;
     local = std::make_unique<Simulation>(std::move(part_problem));
     Simulation::Impl& s = DistributedAccess::impl(*local);
+    s.problem.ale = ale;
+    if (ale.mode != AleMode::lagrangian) s.digest = setup_digest(s);
     // The flags that decide which arrays exist and which kernel variants run: the whole
     // problem's (a part may lack the region or boundary that sets one).
     in.value(s.any_strength);
@@ -859,17 +914,22 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
   };
   // The state: the serial set-up's, bit for bit, one array at a time. The other ranks set
   // their parts up and receive; rank 0 sets its own up last, once the whole state has dropped
-  // the arrays it does not keep (gathered()), its own values of those set aside: the whole
-  // state and rank 0's part are never both complete (docs/parallel.md, "Memory"). An ALE
-  // scene's whole state keeps every array: the serial remap runs on it (docs/parallel.md, "ALE").
+  // its arrays, its own values of them set aside (an array that is all +0.0 is not copied:
+  // its part gets zeros): the whole state and rank 0's part are never both
+  // complete (docs/parallel.md, "Memory"). An ALE scene's whole state keeps every array: the
+  // serial remap runs on it (docs/parallel.md, "ALE").
   on_every_rank(c, [&] {
     if (rank != 0) set_up_part();
   });
   const auto check = [](const StateField& f, std::size_t size, std::size_t expected) {
     if (size != expected) throw Error(std::string("internal: the part's state array '") + f.name + "' differs");
   };
+  const auto all_zero = [](const std::vector<double>& v) {
+    return std::all_of(v.begin(), v.end(), [](double x) { return std::bit_cast<std::uint64_t>(x) == 0; });
+  };
   std::vector<double> values;
   std::vector<std::vector<double>> own;  // rank 0: its part's values of the arrays the whole drops
+  std::vector<unsigned char> own_zero;   // rank 0: those all +0.0 (not kept)
   for (const StateField& f : state_fields()) {
     if (g) {
       if (!present(*g, f.presence)) continue;
@@ -879,7 +939,9 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
       }
       if (g->remap) continue;
       own.emplace_back();
-      part_values(*g, f, part_zones[0], part_points[0], own.back());
+      part_values(*g, f, part.zones, part.points, own.back());
+      own_zero.push_back(all_zero(own.back()) ? 1 : 0);
+      if (own_zero.back()) std::vector<double>().swap(own.back());
       std::vector<double>().swap(DistributedAccess::impl(*whole).*f.member);
     } else {
       Simulation::Impl& s = DistributedAccess::impl(*local);
@@ -894,6 +956,19 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
   }
   values = std::vector<double>();
   malloc_trim(0);
+  if (g) {
+    // Rank 0's own mesh, cut now that the whole state's arrays are gone.
+    part.zone_local.assign(global_zones, -1);
+    part.point_local.assign(global_points, -1);
+    for (std::size_t i = 0; i < part.zones.size(); ++i) part.zone_local[part.zones[i]] = static_cast<Index>(i);
+    for (std::size_t i = 0; i < part.points.size(); ++i) part.point_local[part.points[i]] = static_cast<Index>(i);
+    packed = pack_part(*g, part_names(g->mesh(), part));
+    unpack_names();
+    Mesh& mine = part_problem.mesh;
+    part_mesh_arrays(g->mesh(), part, [&](auto member, auto& v) { (mine.*member).swap(v); });
+    part.zone_local = {};
+    part.point_local = {};
+  }
   on_every_rank(c, [&] {
     if (rank == 0) set_up_part();
   });
@@ -905,7 +980,10 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
       std::vector<double>& to = s.*f.member;
       const std::size_t expected = to.size();
       if (g->remap) {
-        part_values(*g, f, part_zones[0], part_points[0], to);
+        part_values(*g, f, part.zones, part.points, to);
+      } else if (own_zero.at(k)) {
+        to.assign(expected, 0.0);
+        ++k;
       } else {
         to.swap(own.at(k));
         std::vector<double>().swap(own[k++]);  // freed now: the maps below reuse it
@@ -914,8 +992,18 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
     }
   }
   own = {};
+  // The part's global numbers (ascending): a binary search finds a global zone or point in it.
+  s.global_zone = std::move(part.zones);
+  s.global_point = std::move(part.points);
+  part = Part{};
+  const auto local_of = [](const std::vector<Index>& global, Index id) -> Index {
+    const auto at = std::lower_bound(global.begin(), global.end(), id);
+    return at != global.end() && *at == id ? static_cast<Index>(at - global.begin()) : -1;
+  };
   if (g && g->remap) {
     // The ALE remap sends every part its remapped state (MpiCollective::scatter).
+    part_zones[0] = s.global_zone;
+    part_points[0] = s.global_point;
     collective->part_zones = std::move(part_zones);
     collective->part_points = std::move(part_points);
   }
@@ -923,18 +1011,52 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
   part_points = {};
   for (auto* walls : {&s.wall_edges, &s.wall_rays})
     for (WallEdge& w : *walls) {
-      w.a = part.point_local[w.a] >= 0 ? part.point_local[w.a] : -2 - w.a;
-      if (w.b >= 0) w.b = part.point_local[w.b] >= 0 ? part.point_local[w.b] : -2 - w.b;
+      const Index a = local_of(s.global_point, w.a);
+      w.a = a >= 0 ? a : -2 - w.a;
+      if (w.b >= 0) {
+        const Index b = local_of(s.global_point, w.b);
+        w.b = b >= 0 ? b : -2 - w.b;
+      }
     }
 
-  // Ownership, the global numbers, and the ranges split into own and ghost runs.
-  const Index nz = static_cast<Index>(part.zones.size()), np = static_cast<Index>(part.points.size());
-  s.global_zone = part.zones;
-  s.global_point = part.points;
+  // Ownership: the owner of every zone, and of every point (the lowest rank among its zones'
+  // owners), from rank 0 in chunks, so that no other rank holds a map of the whole problem.
+  std::vector<int> point_owner;
+  if (g) {
+    const Mesh& m = g->mesh();
+    point_owner.assign(global_points, INT_MAX);
+    for (Index z = 0; z < m.num_zones(); ++z)
+      for (Index k = m.zone_corner_begin[z]; k < m.zone_corner_begin[z + 1]; ++k)
+        point_owner[m.corner_point[k]] = std::min(point_owner[m.corner_point[k]], owner[z]);
+  }
+  const Index nz = static_cast<Index>(s.global_zone.size()), np = static_cast<Index>(s.global_point.size());
   s.ghost_zone.assign(nz, 0);
   s.ghost_point.assign(np, 0);
-  for (Index z = 0; z < nz; ++z) s.ghost_zone[z] = owner[part.zones[z]] != rank;
-  for (Index p = 0; p < np; ++p) s.ghost_point[p] = point_owner[part.points[p]] != rank;
+  // This rank's ghosts by owner; the owners learn them as global numbers (the halo lists below).
+  std::vector<std::vector<Index>> ghost_points(size), ghost_zones(size);
+  const auto owners = [&](const std::vector<int>& all, Index total, const std::vector<Index>& mine,
+                          std::vector<unsigned char>& ghost, std::vector<std::vector<Index>>& by_owner) {
+    constexpr Index kChunk = 1 << 16;
+    std::vector<int> chunk;
+    std::size_t i = 0;
+    for (Index first = 0; first < total; first += kChunk) {
+      const Index n = std::min(kChunk, total - first);
+      if (g)
+        chunk.assign(all.begin() + first, all.begin() + first + n);
+      else
+        chunk.resize(n);
+      MPI_Bcast(chunk.data(), n, MPI_INT, 0, c);
+      for (; i < mine.size() && mine[i] < first + n; ++i) {
+        const int o = chunk[mine[i] - first];
+        ghost[i] = o != rank;
+        if (o != rank) by_owner[o].push_back(static_cast<Index>(i));
+      }
+    }
+  };
+  owners(owner, global_zones, s.global_zone, s.ghost_zone, ghost_zones);
+  owners(point_owner, global_points, s.global_point, s.ghost_point, ghost_points);
+
+  // The ranges split into own and ghost runs.
   std::vector<ZoneRange> ranges;
   for (const ZoneRange& r : s.ranges)
     for (Index z = r.begin; z < r.end;) {
@@ -945,18 +1067,14 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
       z = e;
     }
   s.ranges = std::move(ranges);
-  for (Index z = 0; z < nz; ++z)
-    if (!s.ghost_zone[z]) collective->own_zones.push_back(z);
-  for (Index p = 0; p < np; ++p)
-    if (!s.ghost_point[p]) collective->own_points.push_back(p);
-  if (s.remap) append_corners(s, collective->own_zones, collective->own_corners);  // the corner masses
+  const bool ale = s.problem.ale.mode != AleMode::lagrangian;
+  if (ale)  // the corner masses
+    for (Index z = 0; z < nz; ++z)
+      if (!s.ghost_zone[z])
+        for (Index k = s.zone_corner_begin[z]; k < s.zone_corner_begin[z + 1]; ++k)
+          collective->own_corners.push_back(k);
 
-  // Halo lists: this rank's ghosts by owner; the owners learn them as global numbers.
-  std::vector<std::vector<Index>> ghost_points(size), ghost_zones(size);
-  for (Index p = 0; p < np; ++p)
-    if (s.ghost_point[p]) ghost_points[point_owner[part.points[p]]].push_back(p);
-  for (Index z = 0; z < nz; ++z)
-    if (s.ghost_zone[z]) ghost_zones[owner[part.zones[z]]].push_back(z);
+  // Halo lists: this rank's ghosts by owner (above), as global numbers to their owners.
   std::vector<int> send_counts(2 * size), recv_counts(2 * size);
   for (int q = 0; q < size; ++q)
     send_counts[2 * q] = static_cast<int>(ghost_points[q].size()),
@@ -966,8 +1084,8 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
   std::vector<Index> send_ids, recv_ids;
   for (int q = 0; q < size; ++q) {
     sd[q] = static_cast<int>(send_ids.size());
-    for (Index p : ghost_points[q]) send_ids.push_back(part.points[p]);
-    for (Index z : ghost_zones[q]) send_ids.push_back(part.zones[z]);
+    for (Index p : ghost_points[q]) send_ids.push_back(s.global_point[p]);
+    for (Index z : ghost_zones[q]) send_ids.push_back(s.global_zone[z]);
     sc[q] = static_cast<int>(send_ids.size()) - sd[q];
     rc[q] = recv_counts[2 * q] + recv_counts[2 * q + 1];
     rd[q] = q == 0 ? 0 : rd[q - 1] + rc[q - 1];
@@ -991,9 +1109,9 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
     n.recv_points = ghost_points[q];
     n.recv_zones = ghost_zones[q];
     append_corners(s, n.recv_zones, n.recv_corners);
-    for (int i = 0; i < recv_counts[2 * q]; ++i) n.send_points.push_back(part.point_local[recv_ids[rd[q] + i]]);
+    for (int i = 0; i < recv_counts[2 * q]; ++i) n.send_points.push_back(local_of(s.global_point, recv_ids[rd[q] + i]));
     for (int i = 0; i < recv_counts[2 * q + 1]; ++i)
-      n.send_zones.push_back(part.zone_local[recv_ids[rd[q] + recv_counts[2 * q] + i]]);
+      n.send_zones.push_back(local_of(s.global_zone, recv_ids[rd[q] + recv_counts[2 * q] + i]));
     append_corners(s, n.send_zones, n.send_corners);
     n.send.resize(per_point * n.send_points.size() + per_zone * n.send_zones.size() +
                   per_corner * n.send_corners.size());
@@ -1011,6 +1129,11 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
     const Mesh& m = g->mesh();
     collective->rank_points.resize(size);
     collective->rank_zones.resize(size);
+    std::vector<std::size_t> points_of(size, 0), zones_of(size, 0);  // exact sizes: no doubling slack
+    for (int o : point_owner) ++points_of[o];
+    for (int o : owner) ++zones_of[o];
+    for (int q = 0; q < size; ++q) collective->rank_points[q].reserve(points_of[q]);
+    for (int q = 0; q < size; ++q) collective->rank_zones[q].reserve(zones_of[q]);
     for (Index p = 0; p < m.num_points(); ++p) collective->rank_points[point_owner[p]].push_back(p);
     for (Index z = 0; z < m.num_zones(); ++z) collective->rank_zones[owner[z]].push_back(z);
     if (g->remap) {
@@ -1025,9 +1148,8 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
   part = Part{};
   owner = {};
   point_owner = {};
-  // ALE: the part's own remap (built by its set-up on the part's mesh) gives way to the
-  // distributed one, which runs the whole problem's on rank 0.
-  if (s.remap) s.remap = std::make_shared<DistributedRemap>(s, *collective);
+  // ALE: the distributed remap, which runs the whole problem's on rank 0.
+  if (ale) s.remap = std::make_shared<DistributedRemap>(s, *collective);
   s.collective = std::move(collective);
   malloc_trim(0);  // hand the set-up's and the distribution's temporaries back to the OS
   return std::move(*local);

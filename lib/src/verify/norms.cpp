@@ -103,9 +103,18 @@ void zone_field_errors(const Simulation& simulation, std::span<const double> fie
   const Mesh& mesh = simulation.mesh();
   if (field.size() != static_cast<std::size_t>(mesh.num_zones()))
     throw Error("zone_field_errors(" + name + "): the field does not have one value per zone");
-  const auto centres = zone_centres(mesh, simulation.x(), simulation.y());
+  // The centres zone by zone (as zone_centres), without two arrays of them: the summary of a
+  // large distributed run computes this on rank 0 (docs/parallel.md, "Memory").
+  const auto x = simulation.x(), y = simulation.y();
+  check_positions(mesh, x, y);
   std::vector<double> differences(field.size());
-  for (std::size_t z = 0; z < field.size(); ++z) differences[z] = field[z] - exact(centres[0][z], centres[1][z]);
+  for (Index z = 0; z < mesh.num_zones(); ++z) {
+    const Index begin = mesh.zone_corner_begin[z];
+    const auto [cx, cy] = polygon_centre(
+        static_cast<int>(mesh.zone_corner_begin[z + 1] - begin), [&](int k) { return x[mesh.corner_point[begin + k]]; },
+        [&](int k) { return y[mesh.corner_point[begin + k]]; });
+    differences[z] = field[z] - exact(cx, cy);
+  }
   append_norms(simulation.zone_area(), differences, name, errors);
 }
 
@@ -139,10 +148,15 @@ FrontCrossing front_crossing(const Mesh& mesh, std::span<const double> x, std::s
                              const std::function<double(double, double)>& coordinate, double min_position) {
   if (field.size() != static_cast<std::size_t>(mesh.num_zones()))
     throw Error("front_crossing: the field does not have one value per zone");
+  // The centres zone by zone (as zone_centres), without two arrays of them.
+  check_positions(mesh, x, y);
   std::vector<double> position(field.size());
-  {
-    const auto centres = zone_centres(mesh, x, y);
-    for (std::size_t z = 0; z < field.size(); ++z) position[z] = coordinate(centres[0][z], centres[1][z]);
+  for (Index z = 0; z < mesh.num_zones(); ++z) {
+    const Index begin = mesh.zone_corner_begin[z];
+    const auto [cx, cy] = polygon_centre(
+        static_cast<int>(mesh.zone_corner_begin[z + 1] - begin), [&](int k) { return x[mesh.corner_point[begin + k]]; },
+        [&](int k) { return y[mesh.corner_point[begin + k]]; });
+    position[z] = coordinate(cx, cy);
   }
   // Edges (a, b), a < b, in ascending (a, b) order, each with its zones in ascending order:
   // point a's edges to higher points from its own corners (no list of every edge, which a

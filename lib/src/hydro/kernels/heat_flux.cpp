@@ -10,20 +10,10 @@
 namespace stagger {
 
 std::vector<Index> heat_flux_neighbours(const Mesh& m, const std::vector<int>& zone_material) {
-  std::vector<Index> neighbour(m.num_corners(), kNoHeatNeighbour);
-  for (Index z = 0; z < m.num_zones(); ++z) {
-    const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
-    for (Index k = 0; k < n; ++k) {
-      const Index p0 = m.corner_point[b + k], p1 = m.corner_point[b + (k + 1) % n];
-      // The corner of another zone at p1 whose edge runs to p0.
-      for (Index i = m.point_corner_begin[p1]; i < m.point_corner_begin[p1 + 1]; ++i) {
-        const Index c = m.point_corners[i], zn = m.corner_zone[c];
-        if (zn == z) continue;
-        const Index bn = m.zone_corner_begin[zn], nn = m.zone_corner_begin[zn + 1] - bn;
-        if (m.corner_point[bn + (c - bn + 1) % nn] == p0 && zone_material[zn] == zone_material[z])
-          neighbour[b + k] = zn;
-      }
-    }
+  std::vector<Index> neighbour = side_twins(m);  // corners across, made zones below
+  for (Index c = 0; c < m.num_corners(); ++c) {
+    const Index zn = neighbour[c] < 0 ? -1 : m.corner_zone[neighbour[c]];
+    neighbour[c] = zn >= 0 && zone_material[zn] == zone_material[m.corner_zone[c]] ? zn : kNoHeatNeighbour;
   }
   return neighbour;
 }

@@ -229,9 +229,14 @@ int scaling_suite(const fs::path& scenes, const fs::path& out_dir, bool quick, i
       {"1 rank x 1 thread", 1, 1}, {"2 ranks x 1 thread", 2, 1}, {"1 rank x 2 threads", 1, 2}};
   std::map<std::string, double> median_rate;
   std::map<std::string, double> peak;
-  for (const Config& c : configs) {
-    std::vector<double> rates;
-    for (int k = 0; k < repeat; ++k) {
+  // Rounds, each running every configuration once: on a shared machine the load drifts over
+  // minutes, and runs of one configuration back to back would each see a different part of it.
+  // Each round also gives a paired speed-up (the two runs next to each other in time).
+  std::map<std::string, std::vector<double>> rates;   // completed runs by configuration, in round order
+  std::map<std::string, std::vector<double>> paired;  // per round: rate / the round's 1-rank rate
+  for (int k = 0; k < repeat; ++k) {
+    std::map<std::string, double> round;
+    for (const Config& c : configs) {
       Measurement m;
       m.name = c.name;
       std::cerr << "[scaling] sedov " << n << "x" << n << " " << c.name << " (" << k + 1 << "/" << repeat << "), load "
@@ -242,15 +247,31 @@ int scaling_suite(const fs::path& scenes, const fs::path& out_dir, bool quick, i
       dir += 't';
       dir += std::to_string(c.threads);
       run(stagger, sedov, sets, c.ranks, c.threads, out_dir / "scaling_runs" / dir, m);
-      if (m.status == "completed" && m.loop_seconds > 0) rates.push_back(m.zones * m.cycles / m.loop_seconds);
+      if (m.status == "completed" && m.loop_seconds > 0) {
+        round[c.name] = m.zones * m.cycles / m.loop_seconds;
+        rates[c.name].push_back(round[c.name]);
+      }
       if (m.status == "completed") peak[c.name] = std::max(peak[c.name], m.peak_bytes / m.zones);
       all.push_back(m);
     }
+    const double base = round["1 rank x 1 thread"];
+    if (base > 0)
+      for (const Config& c : configs)
+        if (round[c.name] > 0) paired[c.name].push_back(round[c.name] / base);
+  }
+  for (const Config& c : configs) {
     double median = 0;
-    const std::string list = median_of(rates, median);
+    const std::string list = median_of(rates[c.name], median);
     median_rate[c.name] = median;
     report << "  " << c.name << ": median " << median << " zone-cycles/s (runs: " << list << "), peak memory "
            << peak[c.name] << " bytes per zone\n";
+  }
+  for (const Config& c : configs) {
+    if (c.name == "1 rank x 1 thread") continue;
+    double median = 0;
+    const std::string list = median_of(paired[c.name], median);
+    report << "  " << c.name << " / 1 rank x 1 thread, run beside it in each round: median " << median
+           << " (rounds: " << list << ")\n";
   }
   // Correctness: 8 ranks oversubscribed against the serial run, bit for bit.
   const std::string small =

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "ale/remap.hpp"
+#include "remap_state.hpp"
 #include "stagger/mesh.hpp"
 #include "stagger/meshgen.hpp"
 
@@ -43,19 +44,7 @@ double corner_area(const Mesh& m, Index z, Index k) {
   return 0.5 * a;
 }
 
-struct State {
-  std::vector<double> zone_mass, corner_mass, point_mass, vx, vy, e, s, kinetic;
-  stagger::RemapFields fields() {
-    stagger::RemapFields f;
-    f.zone_mass = zone_mass.data();
-    f.corner_mass = corner_mass.data();
-    f.point_mass = point_mass.data();
-    f.vx = vx.data();
-    f.vy = vy.data();
-    f.specific = {e.data(), s.data()};
-    f.point_kinetic = kinetic.data();
-    return f;
-  }
+struct State : stagger::testing::RemapState {
   double sum_mass() const {
     double t = 0;
     for (double v : zone_mass) t += v;

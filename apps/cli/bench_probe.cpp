@@ -49,7 +49,9 @@ WorkerReport triad(long n, int threads, int passes, int ready_fd, int go_fd) {
     pb[i] = static_cast<double>(i % 1000);
     pc[i] = static_cast<double>(i % 7);
   }
-  if (ready_fd >= 0) (void)!write(ready_fd, "r", 1);
+  // Ready, and this worker's end of the pipe closed: once every worker has written or died,
+  // the parent's read sees the end of the pipe instead of waiting for a worker that is gone.
+  if (ready_fd >= 0) (void)!write(ready_fd, "r", 1), close(ready_fd);
   wait_for_start(go_fd);
   auto pass = [&] {
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
@@ -69,7 +71,9 @@ WorkerReport triad(long n, int threads, int passes, int ready_fd, int go_fd) {
 // `iterations` updates of kChains independent chains x = x m + d in registers, per thread.
 WorkerReport compute(long iterations, int threads, int ready_fd, int go_fd) {
   WorkerReport report;
-  if (ready_fd >= 0) (void)!write(ready_fd, "r", 1);
+  // Ready, and this worker's end of the pipe closed: once every worker has written or died,
+  // the parent's read sees the end of the pipe instead of waiting for a worker that is gone.
+  if (ready_fd >= 0) (void)!write(ready_fd, "r", 1), close(ready_fd);
   wait_for_start(go_fd);
   const auto start = Clock::now();
   int ok = 1;
@@ -101,17 +105,26 @@ ProbeResult run_probe(ProbeKind kind, int workers, bool threads, long elements, 
   const int per_process_threads = threads ? workers : 1;
   const long share = elements / processes;
   int ready[2], go[2], reports[2];
-  if (pipe(ready) != 0 || pipe(go) != 0 || pipe(reports) != 0) {
-    result.message = "pipe failed";
-    return result;
-  }
+  int* pipes[3] = {ready, go, reports};
+  for (int i = 0; i < 3; ++i)
+    if (pipe(pipes[i]) != 0) {
+      for (int j = 0; j < i; ++j) close(pipes[j][0]), close(pipes[j][1]);
+      result.message = "pipe failed";
+      return result;
+    }
   std::vector<pid_t> children;
   for (int w = 0; w < processes; ++w) {
     const pid_t child = fork();
     if (child == 0) {
-      close(ready[0]), close(go[1]), close(reports[0]);
-      const WorkerReport report = work(kind, share, per_process_threads, passes, ready[1], go[0]);
-      (void)!write(reports[1], &report, sizeof report);
+      // A worker never returns into the bench (an exception, e.g. an allocation that fails,
+      // would otherwise run the rest of the suite a second time in the child).
+      try {
+        close(ready[0]), close(go[1]), close(reports[0]);
+        const WorkerReport report = work(kind, share, per_process_threads, passes, ready[1], go[0]);
+        (void)!write(reports[1], &report, sizeof report);
+      } catch (...) {
+        _exit(1);
+      }
       _exit(0);
     }
     if (child > 0) children.push_back(child);

@@ -151,9 +151,9 @@ std::string median_of(std::vector<double> values, double& median) {
 int scaling_suite(const fs::path& scenes, const fs::path& out_dir, bool quick, int repeat) {
   const std::string stagger = fs::read_symlink("/proc/self/exe").string();
   const fs::path sedov = scenes / "sedov.toml";
-  // Sedov n x n for a fixed number of cycles' worth of time (docs/parallel.md): 1M zones
-  // (the size), 24 cycles, so that the first cycle's fresh force evaluation is a small
-  // part of the loop; --quick: 40 000 zones, 42 cycles.
+  // Sedov n x n for a fixed number of cycles' worth of time (docs/parallel.md): 1M zones (the
+  // size of the 2-rank targets), 24 cycles, so that the first cycle's fresh force evaluation
+  // is a small part of the loop; --quick: 40 000 zones, 42 cycles.
   const int n = quick ? 200 : 1000;
   const std::string sets =
       "--set mesh.nx=" + std::to_string(n) + " --set mesh.ny=" + std::to_string(n) +

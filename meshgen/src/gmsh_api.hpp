@@ -2,7 +2,7 @@
 /// The gmsh 4.8 C++ API functions stagger uses, reached through a small module,
 /// libstagger_gmsh_bridge, that links gmsh and is loaded on first use (docs/mesh.md, "gmsh in
 /// a child process"). A run reads and meshes in a forked child, so only that child loads gmsh
-/// and its libraries (OpenCASCADE, FLTK: about 35 MiB of a process's resident set): the
+/// and its libraries (OpenCASCADE, FLTK: about 38 MiB of a process's resident set): the
 /// stagger process itself, and every rank of a distributed run, never does
 /// (docs/parallel.md, "Memory"). `gm::` below mirrors the `gmsh::` functions, defaults included.
 #pragma once

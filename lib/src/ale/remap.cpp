@@ -545,8 +545,8 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
   const Index nz = m.num_zones(), np = m.num_points(), nc = m.num_corners();
   const std::size_t nf = f.specific.size();
 
-  // Where anything happens. A face whose ends did not move sweeps exactly zero area and
-  // moments, so a zone none of whose points moved neither gives nor takes anything: it needs
+  // Where anything happens. A face whose ends did not move sweeps no area (the flux loop skips
+  // it by that test), so a zone none of whose points moved neither gives nor takes anything: it needs
   // no gradient, bounds or corner values (active zones do); a point gives momentum only
   // through the centre segments of active zones, so only their points need a velocity
   // gradient ("near" points, and the rz axis points, whose velocity is the reconstruction);
@@ -748,6 +748,10 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
         // Half sides, once per interior side (from the lower zone).
         const Index nb = side_zone_[c];
         if (nb > z) {
+          // A side neither of whose ends moved is skipped by that test, not by its swept area
+          // being 0: the area is exactly 0 only if the compiler does not contract its products
+          // into fused multiply-adds, and a zone at rest (no gradients computed) must never give.
+          const bool still = !point_moved_[pa] && !point_moved_[pb];
           for (int h = 0; h < 2; ++h) {
             // Half h: a -> mid (corner c) or mid -> b (corner c1); the cell on the left gains.
             const std::size_t slot = 2 * static_cast<std::size_t>(c) + h;
@@ -755,8 +759,8 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
             const double ax1 = h == 0 ? xn[pa] : mnx, ay1 = h == 0 ? yn[pa] : mny;
             const double bx0 = h == 0 ? mox : xo[pb], by0 = h == 0 ? moy : yo[pb];
             const double bx1 = h == 0 ? mnx : xn[pb], by1 = h == 0 ? mny : yn[pb];
-            const Swept s0 = swept_quad<Rz>(ax0, ay0, ax1, ay1, bx1, by1, bx0, by0, 0.0, 0.0);
-            if (s0.area == 0 && s0.mx == 0 && s0.my == 0) {
+            const Swept s0 = still ? Swept{} : swept_quad<Rz>(ax0, ay0, ax1, ay1, bx1, by1, bx0, by0, 0.0, 0.0);
+            if (still || (s0.area == 0 && s0.mx == 0 && s0.my == 0)) {
               if (direct && !bound) continue;  // adds nothing
               flux_mass_[slot] = 0, flux_active_[slot] = 0;
               for (std::size_t i = 0; i < nf; ++i) flux_q_[i * nc2 + slot] = 0;

@@ -151,6 +151,13 @@ TEST_F(Install, InstalledCommandLineRunsFromItsOwnLibraries) {
     ASSERT_RUNS("readelf -d " + quote(prefix_ / STAGGER_INSTALL_LIBDIR / library), log);
     EXPECT_NE(read_text(log).find("[$ORIGIN]"), std::string::npos) << library << "\n" << read_text(log);
   }
+  // gmsh is loaded at run time, by the child that meshes, from the installed bridge module
+  // (docs/mesh.md): the installed command meshes a .geo file.
+  const fs::path vtu = root_ / "box.vtu";
+  ASSERT_RUNS("env -u LD_LIBRARY_PATH " + quote(prefix_ / "bin/stagger") + " mesh " +
+                  quote(fs::path(STAGGER_SOURCE_DIR) / "geometries/blast_box.geo") + " -o " + quote(vtu),
+              log);
+  EXPECT_GT(fs::file_size(vtu), 1000u) << read_text(log);
 }
 
 }  // namespace

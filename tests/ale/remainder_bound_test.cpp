@@ -61,15 +61,8 @@ struct State : stagger::testing::RemapState {
 template <class CornerRho, class E>
 State make_state(const Mesh& m, CornerRho corner_rho, E energy) {
   State st;
+  st.zero(m);
   const Index nz = m.num_zones(), np = m.num_points();
-  st.zone_mass.assign(nz, 0);
-  st.corner_mass.assign(m.num_corners(), 0);
-  st.point_mass.assign(np, 0);
-  st.e.assign(nz, 0);
-  st.s.assign(nz, 0);
-  st.kinetic.assign(np, 0);
-  st.vx.assign(np, 0);
-  st.vy.assign(np, 0);
   for (Index z = 0; z < nz; ++z) {
     const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
     for (Index k = 0; k < n; ++k) {

@@ -6,11 +6,20 @@
 #include <vector>
 
 #include "ale/remap.hpp"
+#include "stagger/mesh.hpp"
 
 namespace stagger::testing {
 
 struct RemapState {
   std::vector<double> zone_mass, corner_mass, point_mass, vx, vy, e, s, kinetic;
+  /// Every array sized for the mesh and zero.
+  void zero(const Mesh& m) {
+    zone_mass.assign(m.num_zones(), 0);
+    e.assign(m.num_zones(), 0);
+    s.assign(m.num_zones(), 0);
+    corner_mass.assign(m.num_corners(), 0);
+    for (auto* point : {&point_mass, &vx, &vy, &kinetic}) point->assign(m.num_points(), 0);
+  }
   RemapFields fields() {
     RemapFields f;
     f.zone_mass = zone_mass.data();

@@ -81,13 +81,8 @@ void expect_same_bits(const State& a, const State& b, bool kinetic = true) {
 template <class Rho, class E, class V>
 State make_state(const Mesh& m, Rho rho, E energy, V velocity) {
   State st;
+  st.zero(m);
   const Index nz = m.num_zones(), np = m.num_points();
-  st.zone_mass.assign(nz, 0);
-  st.corner_mass.assign(m.num_corners(), 0);
-  st.point_mass.assign(np, 0);
-  st.e.assign(nz, 0);
-  st.s.assign(nz, 0);
-  st.kinetic.assign(np, 0);
   for (Index z = 0; z < nz; ++z) {
     const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
     double cx = 0, cy = 0;
@@ -109,8 +104,6 @@ State make_state(const Mesh& m, Rho rho, E energy, V velocity) {
     st.e[z] = energy(cx, cy);
     st.s[z] = 1.0 - cx * cx;
   }
-  st.vx.assign(np, 0);
-  st.vy.assign(np, 0);
   for (Index p = 0; p < np; ++p) {
     const auto v = velocity(m.x[p], m.y[p]);
     st.vx[p] = v[0], st.vy[p] = v[1];
@@ -486,13 +479,8 @@ double rz_zone_integral(const Mesh& m, const std::vector<double>& x, const std::
 template <class E, class V>
 State make_rz_state(const Mesh& m, double a, double b, double c, E energy, V velocity) {
   State st;
+  st.zero(m);
   const Index nz = m.num_zones(), np = m.num_points();
-  st.zone_mass.assign(nz, 0);
-  st.corner_mass.assign(m.num_corners(), 0);
-  st.point_mass.assign(np, 0);
-  st.e.assign(nz, 0);
-  st.s.assign(nz, 0);
-  st.kinetic.assign(np, 0);
   st.vx.assign(np, 0);
   st.vy.assign(np, 0);
   for (Index z = 0; z < nz; ++z) {

@@ -1,6 +1,6 @@
 #pragma once
 /// @file atomic_file.hpp
-/// Helpers for the write-to-temporary-then-rename protocol (internal to lib/src/io, driver).
+/// Helpers for the write-to-temporary-then-rename protocol (internal to lib/src/io, lib/src/output and lib/src/driver).
 #include <filesystem>
 #include <string>
 

@@ -1,7 +1,7 @@
 #pragma once
 /// @file text_format.hpp
 /// Locale-independent number and string formatting shared by the text writers
-/// (history.csv, summary.json, .pvd). Internal to lib/src/io and lib/src/driver.
+/// (history.csv, summary.json, .pvd). Internal to lib/src/io, lib/src/output and lib/src/driver.
 #include <string>
 
 namespace stagger::io_detail {

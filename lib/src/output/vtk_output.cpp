@@ -1,4 +1,4 @@
-// VTK .vtu output (the only translation units that include VTK are in lib/src/io).
+// VTK .vtu output (the only translation units that include VTK are in lib/src/output).
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkCellType.h>

@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "io/text_format.hpp"
 #include "mesh/polygon.hpp"
 #include "stagger/output.hpp"
 #include "stagger/simulation.hpp"
-#include "text_format.hpp"
 
 namespace stagger {
 

@@ -39,7 +39,8 @@ class CheckingRemap final : public Remap {
     // Sizes: point fields per point, zone fields per zone, no stress without strength.
     for (auto field : {state.x, state.y, state.velocity_x, state.velocity_y}) EXPECT_EQ(field.size(), points);
     EXPECT_EQ(state.point_mass.size(), points);
-    for (auto field : {state.zone_mass, state.zone_area}) EXPECT_EQ(field.size(), zones);
+    EXPECT_EQ(state.zone_mass.size(), zones);
+    EXPECT_EQ(state.zone_area.size(), zones);
     EXPECT_EQ(state.specific_internal_energy.size(), zones);
     EXPECT_TRUE(state.stress_xx.empty() && state.stress_yy.empty() && state.stress_xy.empty());
     // Masses positive and conserved; areas positive and those of the current positions.

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "hydro/simulation_impl.hpp"
-#include "hydro/state_fields.hpp"
 #include "stagger/scene.hpp"
+#include "state/state_table.hpp"
 
 namespace stagger {
 namespace {
@@ -59,7 +59,7 @@ TEST(StateTable, EverySceneHasExactlyTheArraysItNeeds) {
       const auto size = (s.*f.member).size();
       if (present(s, f.presence)) {
         seen.insert(f.presence);
-        EXPECT_EQ(size, static_cast<std::size_t>(entity_size(s, f.entity))) << path << ": " << f.name;
+        EXPECT_EQ(size, static_cast<std::size_t>(entity_size(s.mesh(), f.entity))) << path << ": " << f.name;
       } else {
         EXPECT_EQ(size, 0u) << path << ": " << f.name << " is allocated but the scene does not need it";
       }
@@ -79,7 +79,7 @@ TEST(StateTable, SwapExchangesExactlyThePresentPairs) {
   s.vx_new.assign(s.vx_new.size(), 7.0);
   s.sxx_new.assign(s.sxx_new.size(), 8.0);
   const std::vector<double> e_before = s.e;
-  swap_new_into_current(s);
+  swap_new_into_current(s, s);
   EXPECT_EQ(s.vx, std::vector<double>(s.vx.size(), 7.0));
   EXPECT_EQ(s.sxx, std::vector<double>(s.sxx.size(), 8.0));
   EXPECT_EQ(s.e_new, e_before);

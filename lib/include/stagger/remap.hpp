@@ -9,8 +9,9 @@
 namespace stagger {
 
 /// The Lagrangian state handed to a remap, consistent at the end of a step. A remap may
-/// move points and rewrite the conserved fields; it must keep the zone and point masses
-/// consistent with what it writes. The spans are valid during the remap() call only.
+/// move points and rewrite the conserved fields, the masses included (a conservative remap
+/// moves mass between zones); what it writes must stay consistent (momentum sum m_p v_p,
+/// energy sum m_z e_z + kinetic). The spans are valid during the remap() call only.
 struct RemapState {
   const Mesh& mesh;                                   ///< topology (positions below are the current ones)
   double time;                                        ///< time at the end of the step just taken
@@ -18,8 +19,9 @@ struct RemapState {
   std::span<double> x, y, velocity_x, velocity_y;     ///< point fields (writable)
   std::span<double> specific_internal_energy;         ///< zone field (writable)
   std::span<double> stress_xx, stress_yy, stress_xy;  ///< empty without strength
-  /// Lagrangian zone and point masses (constant) and the zone areas of x, y (read-only).
-  std::span<const double> zone_mass, point_mass, zone_area;
+  /// Zone and point masses (writable: constant in the Lagrangian phase, moved by a remap).
+  std::span<double> zone_mass, point_mass;
+  std::span<const double> zone_area;  ///< zone areas of x, y at the call (read-only)
 };
 
 /// Interface of a remap phase. Return true if anything was changed, so that the

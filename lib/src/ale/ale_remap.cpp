@@ -17,8 +17,8 @@
 #include "hydro/kernels/strength.hpp"
 #include "hydro/kernels/subzonal_pressure.hpp"
 #include "hydro/kernels/zone_status.hpp"
-#include "hydro/state_fields.hpp"
 #include "stagger/error.hpp"
+#include "state/state_table.hpp"
 
 namespace stagger {
 

@@ -10,15 +10,14 @@
 #include <set>
 #include <sstream>
 
-#include "ale/ale_remap.hpp"
 #include "hydro/boundary.hpp"
 #include "hydro/kernels/geometry.hpp"
 #include "hydro/kernels/heat_flux.hpp"
 #include "hydro/kernels/subzonal_pressure.hpp"
 #include "hydro/physics_digest.hpp"
 #include "hydro/simulation_impl.hpp"
-#include "hydro/state_fields.hpp"
 #include "stagger/error.hpp"
+#include "state/state_table.hpp"
 
 namespace stagger {
 
@@ -174,60 +173,42 @@ void Simulation::Impl::setup_rz_masses() {
   }
 }
 
-Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
-  problem.validate();
-  rz = problem.options.geometry == CoordinateSystem::rz;
-  if (rz) setup_axis(problem.mesh);
+// The set-up of each region and its material (indices into problem.regions and
+// problem.materials), the zone ranges (zones are sorted by region in the Mesh), and whether
+// any material has strength or a burn.
+Simulation::Impl::RegionIndex Simulation::Impl::assign_materials() {
   const Mesh& m = mesh();
-  const Index nz = m.num_zones(), np = m.num_points();
-  const HydroOptions& opt = problem.options;
-
-  zone_corner_begin = m.zone_corner_begin;
-  corner_point = m.corner_point;
-  point_corner_begin = m.point_corner_begin;
-  point_corners = m.point_corners;
-  all_quads = m.all_quads();
-  for (Index z = 0; z < nz; ++z) {
-    const Index n = m.zone_corner_begin[z + 1] - m.zone_corner_begin[z];
-    if (n < 3 || n > kMaxZoneVertices) {
-      throw Error(zone_label(m, z) + " has " + std::to_string(n) + " vertices; zones must have 3 to " +
-                  std::to_string(kMaxZoneVertices));
-    }
-  }
-
-  // Material of each region, zone ranges (zones are sorted by region in the Mesh).
-  std::vector<int> region_setup(m.num_regions(), -1), region_material(m.num_regions(), -1);
+  RegionIndex index{std::vector<int>(m.num_regions(), -1), std::vector<int>(m.num_regions(), -1)};
   for (std::size_t i = 0; i < problem.regions.size(); ++i) {
     const int r = m.region_index(problem.regions[i].region);
-    region_setup[r] = static_cast<int>(i);
+    index.setup[r] = static_cast<int>(i);
     for (std::size_t k = 0; k < problem.materials.size(); ++k)
-      if (problem.materials[k].name == problem.regions[i].material) region_material[r] = static_cast<int>(k);
+      if (problem.materials[k].name == problem.regions[i].material) index.material[r] = static_cast<int>(k);
   }
   for (Index r = 0; r < m.num_regions(); ++r) {
     if (m.region_zone_begin[r] < m.region_zone_begin[r + 1])
-      ranges.push_back({m.region_zone_begin[r], m.region_zone_begin[r + 1], region_material[r]});
-    const Material& mat = problem.materials[region_material[r]];
+      ranges.push_back({m.region_zone_begin[r], m.region_zone_begin[r + 1], index.material[r]});
+    const Material& mat = problem.materials[index.material[r]];
     any_strength = any_strength || mat.strength.has_value();
     any_burn = any_burn || mat.burn.has_value();
   }
-  edge_viscosity = opt.viscosity == Viscosity::edge;
-  heat_flux = opt.heat_flux_c1 > 0 || opt.heat_flux_c2 > 0;
-  dt_min = opt.dt_min > 0 ? opt.dt_min : 1e-8 * problem.t_end;
-  setup_boundaries(*this);
-  has_external = !pressure_edges.empty() || (problem.sources && problem.sources->momentum);
-  // Every state array, sized by the state table (what the scene needs, nothing more).
-  allocate_state(*this);
+  return index;
+}
 
+// Density, energy, masses and stress of every zone at t = 0 from its region's set-up.
+void Simulation::Impl::set_initial_zones(const RegionIndex& regions) {
+  const Mesh& m = mesh();
+  const Index nz = m.num_zones();
+  const HydroOptions& opt = problem.options;
   // Initial density and energy at zone centres; corner masses rho^0 A_c^0 (docs/algorithm.md §2).
   std::vector<double> corner_area(kMaxZoneVertices), corner_volume(kMaxZoneVertices);
-  const bool subzonal = opt.hourglass == Hourglass::subzonal || opt.hourglass == Hourglass::subzonal_triangles;
   const Subzones subzones = opt.hourglass == Hourglass::subzonal ? Subzones::corners : Subzones::triangles;
   for (Index z = 0; z < nz; ++z) {
     const ZoneVertices v = load_vertices(m, z);
     const auto [cx, cy] = PlanarGeometry::centre(v);
     const int r = m.zone_region[z];
-    const RegionSetup& setup = problem.regions[region_setup[r]];
-    const Material& mat = problem.materials[region_material[r]];
+    const RegionSetup& setup = problem.regions[regions.setup[r]];
+    const Material& mat = problem.materials[regions.material[r]];
     const double rho0 = setup.density(cx, cy);
     if (!(rho0 > 0) || !std::isfinite(rho0)) {
       std::ostringstream msg;
@@ -278,6 +259,12 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
         throw Error("region '" + setup.region + "': initial deviatoric stress is not finite in " + zone_label(m, z));
     }
   }
+}
+
+// rz masses and the check that every point has mass.
+void Simulation::Impl::check_point_masses() {
+  const Mesh& m = mesh();
+  const Index np = m.num_points();
   if (rz) setup_rz_masses();
   // ALE in rz: the point masses are the sums of the rz subcell masses the remap carries
   // (docs/ale.md, "ALE in rz"); the axis points stay massless.
@@ -297,7 +284,12 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
       throw Error(msg.str());
     }
   }
+}
 
+// The scene's energy deposits.
+void Simulation::Impl::deposit_energy() {
+  const Mesh& m = mesh();
+  const Index nz = m.num_zones(), np = m.num_points();
   // Energy deposits (Sedov): shared by mass among the zones around the nearest point, or a
   // Gaussian in specific energy. A single zone's deposit on a Cartesian mesh starts the blast
   // square, and the entropy that imprint leaves in the inner gas scatters the density at
@@ -333,7 +325,12 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
     for (Index k = m.point_corner_begin[nearest]; k < m.point_corner_begin[nearest + 1]; ++k)
       e[m.corner_zone[m.point_corners[k]]] += d.energy / mass;
   }
+}
 
+// The point velocities at t = 0.
+void Simulation::Impl::set_initial_velocities() {
+  const Mesh& m = mesh();
+  const Index np = m.num_points();
   // Point velocities: the first region set-up (in problem order) whose zones touch the point.
   std::vector<char> done(np, 0);
   for (const auto& setup : problem.regions) {
@@ -353,7 +350,11 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
         }
       }
   }
+}
 
+// The programmed burn's constants.
+void Simulation::Impl::set_up_burn() {
+  const Mesh& m = mesh();
   // Programmed burn: lighting time and burn length per zone (fixed at t = 0).
   if (any_burn) {
     for (const auto& range : ranges) {
@@ -383,6 +384,49 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
       }
     }
   }
+}
+
+Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
+  problem.validate();
+  rz = problem.options.geometry == CoordinateSystem::rz;
+  if (rz) setup_axis(problem.mesh);
+  const Mesh& m = mesh();
+  const Index nz = m.num_zones();
+  const HydroOptions& opt = problem.options;
+
+  zone_corner_begin = m.zone_corner_begin;
+  corner_point = m.corner_point;
+  point_corner_begin = m.point_corner_begin;
+  point_corners = m.point_corners;
+  all_quads = m.all_quads();
+  for (Index z = 0; z < nz; ++z) {
+    const Index n = m.zone_corner_begin[z + 1] - m.zone_corner_begin[z];
+    if (n < 3 || n > kMaxZoneVertices) {
+      throw Error(zone_label(m, z) + " has " + std::to_string(n) + " vertices; zones must have 3 to " +
+                  std::to_string(kMaxZoneVertices));
+    }
+  }
+
+  const RegionIndex regions = assign_materials();
+  edge_viscosity = opt.viscosity == Viscosity::edge;
+  heat_flux = opt.heat_flux_c1 > 0 || opt.heat_flux_c2 > 0;
+  dt_min = opt.dt_min > 0 ? opt.dt_min : 1e-8 * problem.t_end;
+  setup_boundaries(*this);
+  has_external = !pressure_edges.empty() || (problem.sources && problem.sources->momentum);
+  has_sources = problem.sources.has_value();
+  has_momentum_source = problem.sources && problem.sources->momentum;
+  has_energy_source = problem.sources && problem.sources->energy;
+  subzonal = opt.hourglass == Hourglass::subzonal || opt.hourglass == Hourglass::subzonal_triangles;
+  ale = problem.ale.mode != AleMode::lagrangian;
+  compensated = opt.compensated_update;
+  // Every state array, sized by the state table (what the scene needs, nothing more).
+  allocate_state(*this, *this, m);
+
+  set_initial_zones(regions);
+  check_point_masses();
+  deposit_energy();
+  set_initial_velocities();
+  set_up_burn();
 
   if (edge_viscosity) setup_edge_continuation(*this);
   if (heat_flux) setup_heat_neighbours(*this);
@@ -397,7 +441,6 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
   apply_constraints(*this, vx, vy, 0.0);
   recompute_state();
   energy_initial = kinetic_energy() + internal_energy();
-  if (problem.ale.mode != AleMode::lagrangian) remap = make_ale_remap(*this);
   digest = setup_digest(*this);
 #ifdef __GLIBC__
   malloc_trim(0);  // hand the set-up's temporaries back to the OS before the long run

@@ -13,6 +13,8 @@
 #include "hydro/kernels/viscosity_edge.hpp"  // EdgeContinuation
 #include "hydro/walls.hpp"
 #include "stagger/simulation.hpp"
+#include "state/clock.hpp"
+#include "state/state.hpp"
 
 namespace stagger {
 
@@ -46,56 +48,27 @@ struct DigestEntry {
   bool hashed = false;
 };
 
-struct Simulation::Impl {
+// The Lagrangian phase's view of a running problem: the state (arrays), the clock (scalars)
+// and the step's configuration, inherited so that the step's code names them directly, plus
+// the topology, the boundary conditions and the installed remap and observer.
+struct Simulation::Impl : State, Clock, StepConfig {
   Problem problem;
   const Mesh& mesh() const { return problem.mesh; }
-
-  // Step configuration.
-  bool any_strength = false, any_burn = false, all_quads = false;
-  bool edge_viscosity = false;
-  double dt_min = 0;
 
   // Topology: views of the mesh's arrays (the mesh lives in `problem`, which never moves).
   std::span<const Index> zone_corner_begin, corner_point, point_corner_begin, point_corners;
   std::vector<ZoneRange> ranges;
 
-  // The state arrays: every point, zone and corner array below is listed in the state table
-  // (state_fields.cpp), which sizes them (allocate_state), checkpoints, swaps and dumps them.
-  // Points.
-  std::vector<double> x, y;
-  std::vector<double> x_half, y_half;  // only when strength, edge q or external forces need them
-  std::vector<double> vx, vy, vx_new, vy_new, vx_star, vy_star;
-  std::vector<double> point_mass;
-  // Low parts of x and v (numerics.compensated_update only, docs/algorithm.md §20).
-  std::vector<double> x_lo, y_lo, vx_lo, vy_lo, vx_lo_new, vy_lo_new;
-  // Zones.
-  std::vector<double> zone_mass, area, rho, e, e_new, p, q, c;  // c = full sound speed C
-  std::vector<double> rho_half, c_half;                         // edge viscosity only
-  // Strength zones only (sized to the number of zones when any material has strength).
-  std::vector<double> sxx, syy, sxy, sxx_new, syy_new, sxy_new, sxx_half, syy_half, sxy_half;
-  std::vector<double> plastic, plastic_new;
-  std::vector<double> grad_xx, grad_xy, grad_yx, grad_yy;  // L(v) on the current geometry
-  // Burn.
-  std::vector<double> burn, burn_new, lighting_time, burn_length;
-  // Corner forces: the last corrector's f^{n-1/2}, overwritten in place by f^{n+1/2}.
-  std::vector<double> corner_fx, corner_fy;
-  std::vector<double> corner_mass;      // constant subzone masses (the subzonal hourglass options only)
-  std::vector<double> ale_corner_mass;  // median-mesh corner masses, the remap's subcells (ALE only)
-  // Axisymmetric geometry (docs/algorithm.md §19): the acceleration of the (massless) axis
-  // points with the last forces, and (set-up constants) their corners in CSR form: corner,
-  // the two neighbours whose radii s_c measure its radial stretch, k_c = rho^0 A_c^0 s_c^0.
-  std::vector<double> axis_ax, axis_ay;
+  // Axisymmetric geometry (docs/algorithm.md §19), set-up constants: the corners of the axis
+  // points in CSR form: corner, the two neighbours whose radii s_c measure its radial stretch,
+  // k_c = rho^0 A_c^0 s_c^0.
   std::vector<Index> axis_points;  // points on x = 0 (rz)
   std::vector<Index> axis_corner_begin{0}, axis_corner, axis_ref_a, axis_ref_b;
   std::vector<double> axis_moment;
-  bool rz = false;
   std::vector<EdgeContinuation> continuation;
   // Artificial heat flux (docs/algorithm.md §21): per corner the zone across its edge (same
-  // material) or kNoHeatNeighbour; per zone (state table) the conductivity, centre and the
-  // energy rate at t^n that steps 3 and 7 add, with its time-step limit.
-  bool heat_flux = false;
+  // material) or kNoHeatNeighbour, and the time-step limit of the rates at t^n.
   std::vector<Index> heat_neighbour;
-  std::vector<double> heat_kappa, heat_cx, heat_cy, heat_rate;
   DtChoice heat_dt;
 
   // Boundary conditions.
@@ -105,24 +78,10 @@ struct Simulation::Impl {
   std::vector<PressureEdge> pressure_edges;
   std::vector<WallEdge> wall_edges, wall_rays;  // walls fixed in space (boundary.cpp)
   WallGrid wall_grid;
-  WallClearance wall_clearance;        // per-point budgets of the wall check (changes every step)
-  std::vector<Index> external_points;  // points with external forces (pressure, sources)
-  std::vector<double> ext_fx, ext_fy;  // applied-pressure force per point (when used)
-  std::vector<double> src_fx, src_fy;  // momentum-source force per point (when used)
-  std::vector<double> corner_scratch;  // corner areas for the momentum source
-  std::vector<double> source_energy;   // energy added by the energy source this step, per zone
-  bool has_external = false;
+  WallClearance wall_clearance;          // per-point budgets of the wall check (changes every step)
+  std::vector<Index> external_points;    // points with external forces (pressure, sources)
   std::vector<Index> constrained;        // points whose velocity constraints may change
   std::vector<double> free_vx, free_vy;  // their velocity before the constraints (sized by `constrained`)
-
-  // Time and bookkeeping.
-  double t = 0, dt_last = 0, dt_next = 0, dt_control_prev = 0;
-  long cycle = 0;
-  bool have_previous_forces = false;
-  double energy_initial = 0, boundary_work = 0, source_work = 0;
-  double ale_fixup = 0;  // kinetic energy the ALE remap's fix-up moved into internal energy (cumulative)
-  enum class DtReason { cfl, growth, initial, maximum, retry, landing, heat_flux } dt_reason = DtReason::cfl;
-  Index dt_zone = -1;  // zone that limited the last CFL/volume candidate
 
   // What defines the physics, fixed at set-up (checkpoints carry it; a restart compares it).
   std::vector<DigestEntry> digest;
@@ -139,6 +98,16 @@ struct Simulation::Impl {
 
   explicit Impl(Problem prob);
   ~Impl();
+  // The stages of the set-up (setup.cpp; docs/algorithm.md §2).
+  struct RegionIndex {
+    std::vector<int> setup, material;  // per mesh region: its problem.regions and problem.materials entries
+  };
+  RegionIndex assign_materials();
+  void set_initial_zones(const RegionIndex& regions);
+  void check_point_masses();
+  void deposit_energy();
+  void set_initial_velocities();
+  void set_up_burn();
   void step(double t_stop);
   bool try_step(double dt);  // false: a zone tangled, nothing committed
   // The calls of try_step (step.cpp; docs/algorithm.md §1).

@@ -30,8 +30,8 @@
 #include "hydro/kernels/zone_forces.hpp"
 #include "hydro/kernels/zone_validity.hpp"
 #include "hydro/simulation_impl.hpp"
-#include "hydro/state_fields.hpp"
 #include "stagger/error.hpp"
+#include "state/state_table.hpp"
 
 namespace stagger {
 
@@ -465,7 +465,7 @@ void Simulation::Impl::account_boundary_work(double dt) {
 void Simulation::Impl::commit(double dt) {
   commit_positions(mesh().num_points(), dt, vx.data(), vy.data(), vx_new.data(), vy_new.data(), x.data(), y.data(),
                    data_or_null(x_lo), data_or_null(y_lo));
-  swap_new_into_current(*this);  // v, e, S, plastic strain, burn, low parts (the state table)
+  swap_new_into_current(*this, *this);  // v, e, S, plastic strain, burn, low parts (the state table)
   have_previous_forces = true;
 }
 

@@ -34,10 +34,10 @@
 #include "hydro/kernels/zone_status.hpp"
 #include "hydro/physics_digest.hpp"
 #include "hydro/simulation_impl.hpp"
-#include "hydro/state_fields.hpp"
 #include "stagger/error.hpp"
 #include "stagger/parallel.hpp"
 #include "stagger/remap.hpp"
+#include "state/state_table.hpp"
 
 namespace stagger {
 
@@ -453,10 +453,7 @@ class MpiCollective final : public Collective {
     if (my_rank != 0) return;
     Simulation::Impl& w = DistributedAccess::impl(*whole);
     // The scalars are the same on every rank (dt_zone is already global).
-    w.t = s.t, w.dt_last = s.dt_last, w.dt_next = s.dt_next, w.dt_control_prev = s.dt_control_prev;
-    w.cycle = s.cycle, w.have_previous_forces = s.have_previous_forces;
-    w.energy_initial = s.energy_initial, w.boundary_work = s.boundary_work, w.source_work = s.source_work;
-    w.dt_reason = s.dt_reason, w.dt_zone = s.dt_zone, w.ale_fixup = s.ale_fixup;
+    static_cast<Clock&>(w) = static_cast<const Clock&>(s);
   }
 
   const Simulation* gather(const Simulation::Impl& s) override {
@@ -697,11 +694,10 @@ void pack_part(Packer& out, const Simulation::Impl& g, const Mesh& local) {
   for (const std::string& name : local.region_names) out.put(name);
   out.value(static_cast<std::uint64_t>(local.tags.size()));
   for (const BoundaryTag& tag : local.tags) out.put(tag.name), out.put(tag.edges), out.put(tag.points);
-  out.value(g.any_strength), out.value(g.any_burn), out.value(g.all_quads), out.value(g.edge_viscosity);
-  out.value(g.has_external), out.value(g.dt_min);
-  out.value(g.t), out.value(g.dt_last), out.value(g.dt_next), out.value(g.dt_control_prev);
-  out.value(g.cycle), out.value(g.have_previous_forces), out.value(g.dt_zone);
-  out.value(g.energy_initial), out.value(g.boundary_work), out.value(g.source_work);
+  out.value(static_cast<const StepConfig&>(g));
+  io_detail::ByteWriter clock;
+  write_clock(clock, g);
+  out.put(clock.data());
   out.put(g.wall_edges);
   out.put(g.wall_rays);
   const WallGrid& w = g.wall_grid;
@@ -891,16 +887,12 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
     if (ale.mode != AleMode::lagrangian) s.digest = setup_digest(s);
     // The flags that decide which arrays exist and which kernel variants run: the whole
     // problem's (a part may lack the region or boundary that sets one).
-    in.value(s.any_strength);
-    in.value(s.any_burn);
-    in.value(s.all_quads);
-    in.value(s.edge_viscosity);
-    in.value(s.has_external);
-    in.value(s.dt_min);
-    allocate_state(s);  // the arrays of the whole problem's configuration
-    in.value(s.t), in.value(s.dt_last), in.value(s.dt_next), in.value(s.dt_control_prev);
-    in.value(s.cycle), in.value(s.have_previous_forces), in.value(s.dt_zone);
-    in.value(s.energy_initial), in.value(s.boundary_work), in.value(s.source_work);
+    in.value(static_cast<StepConfig&>(s));
+    allocate_state(s, s, s.mesh());  // the arrays of the whole problem's configuration
+    std::string clock;
+    in.get(clock);
+    io_detail::ByteReader clock_bytes(clock, "the clock of a part received from rank 0");
+    static_cast<Clock&>(s) = read_clock(clock_bytes);
     // The walls as fixed lines (the no-crossing check): the whole problem's, so that a point is
     // tested against every wall as in the serial run; a wall point off this part becomes -2 - its number.
     in.get(s.wall_edges);

@@ -1,12 +1,14 @@
 #pragma once
 // The state as one table (docs/architecture.md, "The state table"): every point, zone and
-// corner array of Simulation::Impl with where it lives, when it exists and what it takes
-// part in. Allocation, checkpoint/restore, the swap of new values into the current state
-// and the .vtu dumps iterate over this table; a remap or a halo exchange iterates over it too.
+// corner array of State with where it lives, when it exists and what it takes part in. Allocation, checkpoint/restore,
+// the swap of new values into the current state and the .vtu dumps iterate over this table; a remap or a halo exchange
+// iterates over it too.
 #include <span>
 #include <vector>
 
-#include "hydro/simulation_impl.hpp"
+#include "stagger/mesh.hpp"
+#include "stagger/simulation.hpp"  // OutputRole
+#include "state/state.hpp"
 
 namespace stagger {
 
@@ -36,10 +38,10 @@ enum StateFlag : unsigned {
   kDumped = 1u << 2,        // written to the .vtu dumps under `output_name`
 };
 
-using StateArray = std::vector<double> Simulation::Impl::*;
+using StateArray = std::vector<double> State::*;
 
 struct StateField {
-  const char* name;  // the Impl member (and the field's name in checkpoints)
+  const char* name;  // the State member (and the field's name in checkpoints)
   StateArray member;
   Entity entity;
   Presence presence;
@@ -53,12 +55,12 @@ struct StateField {
 // The table, in the order of the dumps (docs/output.md).
 std::span<const StateField> state_fields();
 
-bool present(const Simulation::Impl& s, Presence presence);
-Index entity_size(const Simulation::Impl& s, Entity entity);
+bool present(const StepConfig& config, Presence presence);
+Index entity_size(const Mesh& mesh, Entity entity);
 
 // Sizes every present array of the table to its entity, filled with its initial value.
-void allocate_state(Simulation::Impl& s);
+void allocate_state(State& s, const StepConfig& config, const Mesh& mesh);
 // Commit of a step: the new values become the current ones (swaps, no copies).
-void swap_new_into_current(Simulation::Impl& s);
+void swap_new_into_current(State& s, const StepConfig& config);
 
 }  // namespace stagger

@@ -1,5 +1,6 @@
-// stagger::Simulation: the public face of the Lagrangian phase (state views, diagnostics,
-// checkpoints). The step itself is in step.cpp, the set-up in setup.cpp.
+// stagger::Simulation: the running problem, which composes the phases (the Lagrangian step
+// of hydro/, the built-in ALE of ale/ behind the public remap door, a distributed run's
+// collective), and its public face: state views, diagnostics, checkpoints.
 #include "stagger/simulation.hpp"
 
 #include <cmath>
@@ -9,14 +10,16 @@
 #include "hydro/exact_sum.hpp"
 #include "hydro/physics_digest.hpp"
 #include "hydro/simulation_impl.hpp"
-#include "hydro/state_fields.hpp"
 #include "io/byte_stream.hpp"
 #include "stagger/error.hpp"
+#include "state/state_table.hpp"
 
 namespace stagger {
 
 Simulation::Simulation(Problem problem) : impl_(std::make_unique<Impl>(std::move(problem))) {
   impl_->owner = this;
+  // ale.mode other than "lagrangian": the built-in ALE phase behind the remap door (docs/ale.md).
+  if (impl_->ale) impl_->remap = make_ale_remap(*impl_);
 }
 Simulation::~Simulation() = default;
 Simulation::Impl::~Impl() = default;
@@ -212,7 +215,7 @@ std::vector<Simulation::OutputField> Simulation::output_fields() const {
 // ---- checkpoints: the state table's checkpointed arrays in the binary format of
 // io/byte_stream.hpp, behind the physics digest (docs/output.md, "Checkpoints") ----
 namespace {
-constexpr std::string_view kBlobMagic = "STGCKPT4";  // the last character is the blob's version
+constexpr std::string_view kBlobMagic = "STGCKPT5";  // the last character is the blob's version
 }  // namespace
 
 std::string Simulation::checkpoint() const {
@@ -222,17 +225,7 @@ std::string Simulation::checkpoint() const {
   write_digest(w, s.digest);
   w.f64(s.problem.t_end);  // the functions of time are sampled in [0, t_end]
   write_digest(w, sampled_digest(s, s.problem.t_end));
-  w.f64(s.t);
-  w.f64(s.dt_last);
-  w.f64(s.dt_next);
-  w.f64(s.dt_control_prev);
-  w.i64(s.cycle);
-  w.i64(s.dt_zone);
-  w.u8(s.have_previous_forces ? 1 : 0);
-  w.f64(s.energy_initial);
-  w.f64(s.boundary_work);
-  w.f64(s.source_work);
-  w.f64(s.ale_fixup);
+  write_clock(w, s);
   for (const StateField& f : state_fields()) {
     if (!(f.flags & kCheckpointed)) continue;
     w.bytes(f.name);
@@ -262,11 +255,7 @@ void Simulation::restore(std::string_view blob, const std::string& source) {
     r.fail("was written for other physics than this scene's: " + differences +
            " (a restart may change only the end time and the output settings)");
   }
-  const double t = r.f64(), dt_last = r.f64(), dt_next = r.f64(), dt_control_prev = r.f64();
-  const long cycle = static_cast<long>(r.i64());
-  const auto dt_zone = static_cast<Index>(r.i64());
-  const bool have_previous_forces = r.u8() != 0;
-  const double energy_initial = r.f64(), boundary_work = r.f64(), source_work = r.f64(), ale_fixup = r.f64();
+  const Clock clock = read_clock(r);
   // Two passes over the arrays: check every name and size, then copy, so that a bad blob
   // leaves the state untouched.
   io_detail::ByteReader arrays = r;
@@ -285,19 +274,12 @@ void Simulation::restore(std::string_view blob, const std::string& source) {
     arrays.bytes_view();
     arrays.doubles(s.*f.member, f.name);
   }
-  s.t = t;
-  s.dt_last = dt_last;
-  s.dt_control_prev = dt_control_prev;
-  s.cycle = cycle;
-  s.have_previous_forces = have_previous_forces;
-  s.energy_initial = energy_initial;
-  s.boundary_work = boundary_work;
-  s.source_work = source_work;
-  s.ale_fixup = ale_fixup;
+  // recompute_state() sets the next step's dt candidate from the state: the saved one wins.
+  static_cast<Clock&>(s) = clock;
   if (s.rz && !s.ale_corner_mass.empty()) ale_axis_masses(s);  // from the restored subcell masses
   s.recompute_state();
-  s.dt_next = dt_next;
-  s.dt_zone = dt_zone;
+  s.dt_next = clock.dt_next;
+  s.dt_zone = clock.dt_zone;
 }
 
 }  // namespace stagger

@@ -1,5 +1,5 @@
-// The state table (state_fields.hpp): one entry per array of Simulation::Impl.
-#include "hydro/state_fields.hpp"
+// The state table (state_table.hpp): one entry per array of State.
+#include "state/state_table.hpp"
 
 #include <array>
 #include <limits>
@@ -9,7 +9,7 @@ namespace stagger {
 
 namespace {
 
-using I = Simulation::Impl;
+using I = State;
 using Role = Simulation::OutputRole;
 constexpr unsigned kC = kCheckpointed, kR = kRemapped, kD = kDumped;
 constexpr double kNever = std::numeric_limits<double>::infinity();
@@ -103,8 +103,7 @@ std::span<const StateField> state_fields() {
   return kFields;
 }
 
-bool present(const Simulation::Impl& s, Presence presence) {
-  const auto& sources = s.problem.sources;
+bool present(const StepConfig& s, Presence presence) {
   switch (presence) {
     case Presence::always:
       return true;
@@ -115,49 +114,48 @@ bool present(const Simulation::Impl& s, Presence presence) {
     case Presence::edge_viscosity:
       return s.edge_viscosity;
     case Presence::half_step:
-      return s.any_strength || s.edge_viscosity || s.has_external || sources.has_value();
+      return s.any_strength || s.edge_viscosity || s.has_external || s.has_sources;
     case Presence::external:
       return s.has_external;
     case Presence::momentum_source:
-      return sources && sources->momentum;
+      return s.has_momentum_source;
     case Presence::energy_source:
-      return sources && sources->energy;
+      return s.has_energy_source;
     case Presence::subzonal:
-      return s.problem.options.hourglass == Hourglass::subzonal ||
-             s.problem.options.hourglass == Hourglass::subzonal_triangles;
+      return s.subzonal;
     case Presence::ale:
-      return s.problem.ale.mode != AleMode::lagrangian;
+      return s.ale;
     case Presence::rz:
-      return s.problem.options.geometry == CoordinateSystem::rz;
+      return s.rz;
     case Presence::compensated:
-      return s.problem.options.compensated_update;
+      return s.compensated;
     case Presence::heat_flux:
       return s.heat_flux;
   }
   return false;
 }
 
-Index entity_size(const Simulation::Impl& s, Entity entity) {
+Index entity_size(const Mesh& mesh, Entity entity) {
   switch (entity) {
     case Entity::point:
-      return s.mesh().num_points();
+      return mesh.num_points();
     case Entity::zone:
-      return s.mesh().num_zones();
+      return mesh.num_zones();
     case Entity::corner:
-      return s.mesh().num_corners();
+      return mesh.num_corners();
   }
   return 0;
 }
 
-void allocate_state(Simulation::Impl& s) {
+void allocate_state(State& s, const StepConfig& config, const Mesh& mesh) {
   for (const StateField& f : kFields) {
-    if (present(s, f.presence)) (s.*f.member).assign(entity_size(s, f.entity), f.initial);
+    if (present(config, f.presence)) (s.*f.member).assign(entity_size(mesh, f.entity), f.initial);
   }
 }
 
-void swap_new_into_current(Simulation::Impl& s) {
+void swap_new_into_current(State& s, const StepConfig& config) {
   for (const StateField& f : kFields) {
-    if (f.next && present(s, f.presence)) (s.*f.member).swap(s.*f.next);
+    if (f.next && present(config, f.presence)) (s.*f.member).swap(s.*f.next);
   }
 }
 

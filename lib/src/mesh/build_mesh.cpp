@@ -387,21 +387,13 @@ void check_overlaps(const Mesh& mesh, const std::vector<std::size_t>& polygon_of
   }
 }
 
-}  // namespace
-
-Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options, MeshBuildReport* report) {
-  MeshBuildReport local_report;
-  MeshBuildReport& rep = report ? *report : local_report;
-  rep = MeshBuildReport{};
-  const std::vector<std::string> region_names = check_structure(soup);
+// quads_only: every 2D element in a physical surface and every zone a quadrilateral.
+void check_quads_only(const PolygonSoup& soup) {
   const std::size_t npoly = soup.num_polygons();
-  const auto region_of = [&](std::size_t f) { return soup.polygon_region.empty() ? 0 : soup.polygon_region[f]; };
-
-  for (const auto& note : soup.notes) rep.notes.push_back(note);
-  if (options.quads_only && soup.unassigned_elements > 0)
+  if (soup.unassigned_elements > 0)
     throw Error("quads only: " + std::to_string(soup.unassigned_elements) + " 2D elements of " + soup.source +
                 " belong to no physical surface; add them to a Physical Surface (or remove them)");
-  if (options.quads_only) {
+  {
     std::size_t non_quads = 0, first = npoly;
     for (std::size_t f = 0; f < npoly; ++f)
       if (soup.polygon_begin[f + 1] - soup.polygon_begin[f] != 4) {
@@ -414,12 +406,23 @@ Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options, MeshBu
                   "); use the triangle policy 'subdivide' (scene: triangles = \"subdivide\"; "
                   "stagger mesh --triangles subdivide) or allow mixed zones");
   }
+}
 
+// The soup's points used by some zone, in their relative order: `used` lists them (soup
+// numbers), `compact` maps a soup point to its mesh number (-1: dropped).
+struct UsedPoints {
+  std::vector<Index> compact;
+  std::vector<std::int64_t> used;
+};
+
+UsedPoints used_points(const PolygonSoup& soup, MeshBuildReport& rep) {
   // Orphan points are dropped; the others keep their relative order.
   const std::size_t nsoup_points = soup.x.size();
-  std::vector<Index> compact(nsoup_points, -1);
+  UsedPoints u;
+  std::vector<Index>& compact = u.compact;
+  compact.assign(nsoup_points, -1);
   for (auto p : soup.polygon_points) compact[static_cast<std::size_t>(p)] = 0;
-  std::vector<std::int64_t> used;
+  std::vector<std::int64_t>& used = u.used;
   for (std::size_t p = 0; p < nsoup_points; ++p)
     if (compact[p] == 0) {
       compact[p] = static_cast<Index>(used.size());
@@ -429,18 +432,16 @@ Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options, MeshBu
   if (rep.dropped_points > 0)
     rep.notes.push_back(std::to_string(rep.dropped_points) + " points used by no zone were dropped");
 
-  check_duplicates(soup, used);
-  check_zone_geometry(soup);
+  return u;
+}
 
-  // Topology (CGAL): consistent counter-clockwise orientation, manifoldness, loops.
-  std::vector<double> cx(used.size()), cy(used.size());
-  for (std::size_t i = 0; i < used.size(); ++i) {
-    cx[i] = soup.x[static_cast<std::size_t>(used[i])];
-    cy[i] = soup.y[static_cast<std::size_t>(used[i])];
-  }
-  std::vector<std::int64_t> cpoints(soup.polygon_points.size());
-  for (std::size_t k = 0; k < cpoints.size(); ++k)
-    cpoints[k] = compact[static_cast<std::size_t>(soup.polygon_points[k])];
+// Orientation of every zone: CGAL's topology check (consistent counter-clockwise orientation,
+// manifoldness, boundary loops), or, for a trusted topology, each zone's signed area.
+detail::TopologyResult orient_zones(const PolygonSoup& soup, const MeshBuildOptions& options,
+                                    const std::vector<double>& cx, const std::vector<double>& cy,
+                                    const std::vector<std::int64_t>& cpoints, const std::vector<std::int64_t>& used,
+                                    MeshBuildReport& rep) {
+  const std::size_t npoly = soup.num_polygons();
   std::vector<std::int64_t> polygon_ids(npoly);
   std::iota(polygon_ids.begin(), polygon_ids.end(), std::int64_t{0});
   detail::TopologyResult topo;
@@ -468,20 +469,17 @@ Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options, MeshBu
                   "zones (the mesh folds over there): " + zone_points_text(soup, f));
     }
   }
-  polygon_ids = {};
-  for (auto r : topo.reversed) rep.reoriented_zones += r;
-  if (rep.reoriented_zones > 0)
-    rep.notes.push_back(std::to_string(rep.reoriented_zones) + " of " + std::to_string(npoly) +
-                        " zones were clockwise and were reoriented counter-clockwise");
+  return topo;
+}
 
-  Mesh mesh;
-  mesh.source = soup.source;
-  mesh.x = std::move(cx);
-  mesh.y = std::move(cy);
-  mesh.region_names = region_names;
-
+// Zones sorted by region and their corners: fills the mesh's zone and corner arrays and
+// returns the soup polygon of each zone.
+std::vector<std::size_t> sort_zones(const PolygonSoup& soup, const detail::TopologyResult& topo,
+                                    const std::vector<std::int64_t>& cpoints, Mesh& mesh) {
+  const std::size_t npoly = soup.num_polygons();
+  const auto region_of = [&](std::size_t f) { return soup.polygon_region.empty() ? 0 : soup.polygon_region[f]; };
   // Zones sorted by region (stable: equal regions keep the soup order).
-  const auto nregions = static_cast<Index>(region_names.size());
+  const auto nregions = static_cast<Index>(mesh.region_names.size());
   mesh.region_zone_begin.assign(static_cast<std::size_t>(nregions) + 1, 0);
   for (std::size_t f = 0; f < npoly; ++f) ++mesh.region_zone_begin[region_of(f) + 1];
   for (Index r = 0; r < nregions; ++r) mesh.region_zone_begin[r + 1] += mesh.region_zone_begin[r];
@@ -513,11 +511,12 @@ Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options, MeshBu
     mesh.zone_corner_begin[z + 1] = c;
     mesh.zone_region[z] = region_of(f);
   }
-  // Drop what the corners were read from before the checks below allocate (peak memory).
-  cpoints = {};
-  zone_of_polygon = {};
+  return polygon_of_zone;
+}
 
-  // CSR point -> corners; filling in corner order keeps each list ascending.
+// The point -> corners CSR; filling in corner order keeps each list ascending.
+void index_point_corners(Mesh& mesh) {
+  const auto ncorners = static_cast<Index>(mesh.corner_point.size());
   const Index npoints = mesh.num_points();
   mesh.point_corner_begin.assign(static_cast<std::size_t>(npoints) + 1, 0);
   for (Index k = 0; k < ncorners; ++k) ++mesh.point_corner_begin[mesh.corner_point[k] + 1];
@@ -527,7 +526,11 @@ Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options, MeshBu
     std::vector<Index> next(mesh.point_corner_begin.begin(), mesh.point_corner_begin.end() - 1);
     for (Index k = 0; k < ncorners; ++k) mesh.point_corners[next[mesh.corner_point[k]]++] = k;
   }
+}
 
+// The boundary tags; returns the key of every tagged edge.
+std::unordered_set<std::uint64_t> attach_tags(const PolygonSoup& soup, const std::vector<Index>& compact, Mesh& mesh) {
+  const std::size_t nsoup_points = soup.x.size();
   // Tags: every tagged edge must be an edge of some zone; it takes that zone's
   // counter-clockwise direction (the first zone, for an interior edge).
   const auto next_corner = [&](Index k) {
@@ -582,8 +585,12 @@ Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options, MeshBu
     tag.points.erase(std::unique(tag.points.begin(), tag.points.end()), tag.points.end());
   }
 
-  check_overlaps(mesh, polygon_of_zone, used);
+  return tagged;
+}
 
+// The report's notes on CGAL's boundary loops and on flipped components.
+void report_boundary(const detail::TopologyResult& topo, const std::unordered_set<std::uint64_t>& tagged,
+                     const MeshBuildOptions& options, MeshBuildReport& rep) {
   // Boundary loops from CGAL: count them and the boundary edges no tag covers.
   std::size_t untagged = 0, boundary_edges = 0;
   for (const auto& loop : topo.boundary_loops) {
@@ -600,6 +607,52 @@ Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options, MeshBu
   if (topo.flipped_components > 0)
     rep.notes.push_back(std::to_string(topo.flipped_components) + " of " + std::to_string(topo.components) +
                         " connected component(s) were clockwise as a whole and were flipped");
+}
+
+}  // namespace
+
+Mesh build_mesh(const PolygonSoup& soup, const MeshBuildOptions& options, MeshBuildReport* report) {
+  MeshBuildReport local_report;
+  MeshBuildReport& rep = report ? *report : local_report;
+  rep = MeshBuildReport{};
+  const std::vector<std::string> region_names = check_structure(soup);
+  const std::size_t npoly = soup.num_polygons();
+
+  for (const auto& note : soup.notes) rep.notes.push_back(note);
+  if (options.quads_only) check_quads_only(soup);
+  UsedPoints points = used_points(soup, rep);
+  const std::vector<std::int64_t>& used = points.used;
+  const std::vector<Index>& compact = points.compact;
+
+  check_duplicates(soup, used);
+  check_zone_geometry(soup);
+
+  std::vector<double> cx(used.size()), cy(used.size());
+  for (std::size_t i = 0; i < used.size(); ++i) {
+    cx[i] = soup.x[static_cast<std::size_t>(used[i])];
+    cy[i] = soup.y[static_cast<std::size_t>(used[i])];
+  }
+  std::vector<std::int64_t> cpoints(soup.polygon_points.size());
+  for (std::size_t k = 0; k < cpoints.size(); ++k)
+    cpoints[k] = compact[static_cast<std::size_t>(soup.polygon_points[k])];
+  const detail::TopologyResult topo = orient_zones(soup, options, cx, cy, cpoints, used, rep);
+  for (auto r : topo.reversed) rep.reoriented_zones += r;
+  if (rep.reoriented_zones > 0)
+    rep.notes.push_back(std::to_string(rep.reoriented_zones) + " of " + std::to_string(npoly) +
+                        " zones were clockwise and were reoriented counter-clockwise");
+
+  Mesh mesh;
+  mesh.source = soup.source;
+  mesh.x = std::move(cx);
+  mesh.y = std::move(cy);
+  mesh.region_names = region_names;
+  const std::vector<std::size_t> polygon_of_zone = sort_zones(soup, topo, cpoints, mesh);
+  // Drop what the corners were read from before the checks below allocate (peak memory).
+  cpoints = {};
+  index_point_corners(mesh);
+  const std::unordered_set<std::uint64_t> tagged = attach_tags(soup, compact, mesh);
+  check_overlaps(mesh, polygon_of_zone, used);
+  report_boundary(topo, tagged, options, rep);
   return mesh;
 }
 

@@ -126,7 +126,7 @@ void broadcast_sizes(Distribution& d) {
 // Rank 0 cuts each other rank's part (mesh, walls, configuration) and sends it, and keeps its
 // own part's zones and points (its mesh it cuts once the whole state is gone); every other
 // rank receives its part and returns what follows the mesh's names, for its set-up.
-std::string send_parts(Distribution& d) {
+std::string deliver_parts(Distribution& d) {
   if (!d.g) {
     std::string packed = receive_part(d.part, d.part_problem.mesh, d.comm);
     return unpack_mesh_names(packed, d.part_problem.mesh);
@@ -164,16 +164,17 @@ std::string cut_own_mesh(Distribution& d) {
 }
 
 // The ranks for which `here` is true set their part up (collective: errors reach every rank).
-void set_up_parts(Distribution& d, bool here, std::string& rest) {
+void set_up_part_where(Distribution& d, bool here, std::string& rest) {
   on_every_rank(d.comm, [&] {
     if (here) d.local = set_up_part(std::move(d.part_problem), std::move(rest));
   });
 }
 
-// The state: the serial set-up's, bit for bit (state_transfer.hpp). The other ranks set their
-// parts up and receive; rank 0 sets its own up last, from the values it set aside.
-void transfer_state(Distribution& d, std::string& rest) {
-  set_up_parts(d, d.rank != 0, rest);
+// Every rank's part set up (on its mesh, `rest` its configuration) with the serial set-up's
+// state, bit for bit (state_transfer.hpp): the other ranks set their parts up and receive;
+// rank 0 sets its own up last, from the values it set aside.
+void set_up_every_part(Distribution& d, std::string& rest) {
+  set_up_part_where(d, d.rank != 0, rest);
   OwnState kept;
   if (d.g)
     kept = send_state(*d.g, d.part_zones, d.part_points, d.part, d.comm);
@@ -181,7 +182,7 @@ void transfer_state(Distribution& d, std::string& rest) {
     receive_state(DistributedAccess::impl(*d.local), d.comm);
   malloc_trim(0);
   if (d.g) rest = cut_own_mesh(d);
-  set_up_parts(d, d.rank == 0, rest);
+  set_up_part_where(d, d.rank == 0, rest);
   if (d.g) fill_own_state(DistributedAccess::impl(*d.local), *d.g, d.part, kept);
 }
 
@@ -203,8 +204,9 @@ void adopt_global_numbers(Distribution& d, MpiCollective& c) {
   number_walls_locally(s);
 }
 
-// Ownership (the owner of every zone and point, from rank 0), the halo lists and the gathers.
-void connect(Distribution& d, MpiCollective& c) {
+// What the collective needs: ownership (the owner of every zone and point, from rank 0), the
+// halo lists and the gathers.
+void set_up_collective(Distribution& d, MpiCollective& c) {
   Simulation::Impl& s = DistributedAccess::impl(*d.local);
   std::vector<int> point_owner;
   if (d.g) point_owner = point_owners(d.g->mesh(), d.owner);
@@ -255,10 +257,10 @@ Simulation distribute(Problem problem, MPI_Comm comm) {
   // The parts' meshes and configurations first; the state arrays follow once every rank has
   // set its part up, one message per array, so that no rank holds its part's state twice
   // (docs/parallel.md, "Memory").
-  std::string rest = send_parts(d);
-  transfer_state(d, rest);
+  std::string rest = deliver_parts(d);
+  set_up_every_part(d, rest);
   adopt_global_numbers(d, *collective);
-  connect(d, *collective);
+  set_up_collective(d, *collective);
   d.whole.reset();
   d.owner = {};
   Simulation::Impl& s = DistributedAccess::impl(*d.local);

@@ -188,7 +188,7 @@ void MpiCollective::gather_fields(const Simulation::Impl& s, const std::vector<c
     MPI_Gatherv(send.data(), static_cast<int>(send.size()), MPI_DOUBLE, recv.data(), counts.data(), offsets.data(),
                 MPI_DOUBLE, 0, comm);
     if (my_rank != 0) continue;
-    // The whole state's arrays are empty until the first gather (distribute() frees them).
+    // The whole state's arrays are empty until the first gather (send_state() frees them).
     Simulation::Impl& w = DistributedAccess::impl(*whole);
     const Mesh& m = w.mesh();
     std::vector<double>& whole_array = w.*(f->member);

@@ -151,6 +151,10 @@ class Simulation {
   friend struct DistributedAccess;  ///< the distributed runs' set-up (lib/src/parallel)
 
  private:
+  /// The Lagrangian phase alone, without the built-in ALE (a distributed run's parts, whose
+  /// ALE phase is the distributed one).
+  struct LagrangianOnly {};
+  Simulation(Problem problem, LagrangianOnly);
   std::unique_ptr<Impl> impl_;
 };
 

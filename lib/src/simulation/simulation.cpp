@@ -16,8 +16,10 @@
 
 namespace stagger {
 
-Simulation::Simulation(Problem problem) : impl_(std::make_unique<Impl>(std::move(problem))) {
+Simulation::Simulation(Problem problem, LagrangianOnly) : impl_(std::make_unique<Impl>(std::move(problem))) {
   impl_->owner = this;
+}
+Simulation::Simulation(Problem problem) : Simulation(std::move(problem), LagrangianOnly{}) {
   // ale.mode other than "lagrangian": the built-in ALE phase behind the remap door (docs/ale.md).
   if (impl_->ale) impl_->remap = make_ale_remap(*impl_);
 }

@@ -125,34 +125,74 @@ inline bool beyond_bounds(double q1, double lo, double hi, double m0, double m1)
   throw Error(msg.str());
 }
 
+// The sum of value[slot] over a list of entries (slot * 2 + 1 where it is subtracted), in the
+// list's order.
+inline double signed_sum(const Index* begin, const Index* end, const double* value) {
+  double s = 0;
+  for (const Index* e = begin; e != end; ++e) {
+    const double v = value[*e >> 1];
+    if (*e & 1)
+      s -= v;
+    else
+      s += v;
+  }
+  return s;
+}
+
+// The corner after c in its zone (counter-clockwise).
+inline Index next_corner(const Mesh& mesh, Index c) {
+  const Index z = mesh.corner_zone[c];
+  return c + 1 == mesh.zone_corner_begin[z + 1] ? mesh.zone_corner_begin[z] : c + 1;
+}
+
 }  // namespace
 
 Remapper::Remapper(const Mesh& mesh, std::span<const int> zone_material, bool rz) : mesh_(mesh), rz_(rz) {
-  const Index nz = mesh.num_zones(), np = mesh.num_points(), nc = mesh.num_corners();
+  find_sides(zone_material);
+  find_neighbours(zone_material);
+  allocate_workspace();
+  order_flux_sums();
+}
+
+// The rz axis points, and per corner the zone across its side (same material only) with that
+// zone's two corners on the side; the points of the other sides are boundary points.
+void Remapper::find_sides(std::span<const int> zone_material) {
+  const Mesh& mesh = mesh_;
+  const Index np = mesh.num_points(), nc = mesh.num_corners();
   axis_point_.assign(np, 0);
-  if (rz)
+  if (rz_)
     for (Index p = 0; p < np; ++p) axis_point_[p] = mesh.x[p] == 0;
   side_zone_.assign(nc, -1);
   side_corner0_.assign(nc, -1);
   side_corner1_.assign(nc, -1);
   boundary_point_.assign(np, 0);
-  auto next_corner = [&](Index c) {
-    const Index z = mesh.corner_zone[c];
-    return c + 1 == mesh.zone_corner_begin[z + 1] ? mesh.zone_corner_begin[z] : c + 1;
-  };
   const std::vector<Index> twin = side_twins(mesh);
   for (Index c = 0; c < nc; ++c) {
-    const Index a = mesh.corner_point[c], b = mesh.corner_point[next_corner(c)], t = twin[c];
+    const Index a = mesh.corner_point[c], b = mesh.corner_point[next_corner(mesh, c)], t = twin[c];
     const Index z = mesh.corner_zone[c];
     if (t >= 0 && zone_material[mesh.corner_zone[t]] == zone_material[z]) {
       side_zone_[c] = mesh.corner_zone[t];
-      side_corner1_[c] = t;               // its corner at b
-      side_corner0_[c] = next_corner(t);  // its corner at a
+      side_corner1_[c] = t;                     // its corner at b
+      side_corner0_[c] = next_corner(mesh, t);  // its corner at a
     } else {
       boundary_point_[a] = boundary_point_[b] = 1;
     }
   }
-  // Zone neighbours: same-material zones sharing a point. Point neighbours: along sides.
+  // rz: a centre segment with an end on the axis exchanges nothing. The axis points are
+  // massless in the Lagrangian rz step (docs/algorithm.md §19): their dual cells hold mass
+  // (their corners') but no momentum, so mass moved between them and the other points'
+  // dual cells would carry momentum from or into nothing.
+  segment_point_.assign(nc, 1);
+  for (Index c = 0; c < nc; ++c)
+    if (axis_point_[mesh.corner_point[c]] || axis_point_[mesh.corner_point[next_corner(mesh, c)]])
+      segment_point_[c] = 0;
+}
+
+// The gradients' stencils. Zone neighbours: same-material zones sharing a point. Point
+// neighbours: along sides.
+void Remapper::find_neighbours(std::span<const int> zone_material) {
+  const Mesh& mesh = mesh_;
+  const Index nz = mesh.num_zones(), np = mesh.num_points();
   zone_nbr_begin_.assign(nz + 1, 0);
   std::vector<Index> list;
   for (Index z = 0; z < nz; ++z) {
@@ -183,6 +223,12 @@ Remapper::Remapper(const Mesh& mesh, std::span<const int> zone_material, bool rz
     point_nbr_.insert(point_nbr_.end(), list.begin(), list.end());
     point_nbr_begin_[p + 1] = static_cast<Index>(point_nbr_.size());
   }
+}
+
+// The workspace, once for the topology (the remaps allocate nothing after the first).
+void Remapper::allocate_workspace() {
+  const Mesh& mesh = mesh_;
+  const Index nz = mesh.num_zones(), np = mesh.num_points(), nc = mesh.num_corners();
   for (auto* v : {&area_, &cx_, &cy_, &rho_, &grx_, &gry_, &rlo_, &rhi_, &qgx_, &qgy_}) v->assign(nz, 0.0);
   zlsq_.assign(3 * static_cast<std::size_t>(nz), 0.0);
   plsq_.assign(3 * static_cast<std::size_t>(np), 0.0);
@@ -197,9 +243,26 @@ Remapper::Remapper(const Mesh& mesh, std::span<const int> zone_material, bool rz
   gox_.assign(nz, 0.0);
   goy_.assign(nz, 0.0);
   point_touched_.assign(np, 0);
-  // The order in which a serial sweep over the zones adds each face's flux to its cells
-  // (zones in order; per corner its side's two halves, if this zone owns the side, then
-  // its centre segment): the gathers of remap() follow it.
+  flux_mass_.assign(3 * static_cast<std::size_t>(nc), 0.0);
+  flux_active_.assign(3 * static_cast<std::size_t>(nc), 0);
+  for (auto* v : {&seg_px_, &seg_py_, &seg_ke_}) v->assign(nc, 0.0);
+  zone_dm_.assign(nz, 0.0);
+  corner_dm_.assign(nc, 0.0);
+  zone_hit_.assign(nz, 0);
+  zone_resum_.assign(nz, 0);
+  zone_active_.assign(nz, 1);
+  zone_near_.assign(nz, 1);
+  point_moved_.assign(np, 1);
+  point_near_.assign(np, 1);
+  bound_zones_.reserve(nz);
+}
+
+// The order in which a serial sweep over the zones adds each face's flux to its cells
+// (zones in order; per corner its side's two halves, if this zone owns the side, then
+// its centre segment): the gathers of remap() follow it.
+void Remapper::order_flux_sums() {
+  const Mesh& mesh = mesh_;
+  const Index nz = mesh.num_zones(), np = mesh.num_points(), nc = mesh.num_corners();
   std::vector<std::vector<Index>> zl(nz), cl(nc), pl(np);
   for (Index z = 0; z < nz; ++z) {
     const Index b = mesh.zone_corner_begin[z], n = mesh.zone_corner_begin[z + 1] - b;
@@ -233,25 +296,6 @@ Remapper::Remapper(const Mesh& mesh, std::span<const int> zone_material, bool rz
   flatten(zl, zone_list_begin_, zone_list_);
   flatten(cl, corner_list_begin_, corner_list_);
   flatten(pl, point_list_begin_, point_list_);
-  // rz: a centre segment with an end on the axis exchanges nothing. The axis points are
-  // massless in the Lagrangian rz step (docs/algorithm.md §19): their dual cells hold mass
-  // (their corners') but no momentum, so mass moved between them and the other points'
-  // dual cells would carry momentum from or into nothing.
-  segment_point_.assign(nc, 1);
-  for (Index c = 0; c < nc; ++c)
-    if (axis_point_[mesh.corner_point[c]] || axis_point_[mesh.corner_point[next_corner(c)]]) segment_point_[c] = 0;
-  flux_mass_.assign(3 * static_cast<std::size_t>(nc), 0.0);
-  flux_active_.assign(3 * static_cast<std::size_t>(nc), 0);
-  for (auto* v : {&seg_px_, &seg_py_, &seg_ke_}) v->assign(nc, 0.0);
-  zone_dm_.assign(nz, 0.0);
-  corner_dm_.assign(nc, 0.0);
-  zone_hit_.assign(nz, 0);
-  zone_resum_.assign(nz, 0);
-  zone_active_.assign(nz, 1);
-  zone_near_.assign(nz, 1);
-  point_moved_.assign(np, 1);
-  point_near_.assign(np, 1);
-  bound_zones_.reserve(nz);
 }
 
 int Remapper::substeps(const double* xo, const double* yo, const double* xn, const double* yn, double fraction) const {
@@ -431,58 +475,56 @@ void Remapper::keep_outflows(const RemapFields& f, Index z, std::size_t i, doubl
 // same on any number of threads), and the new zone and corner values; a list entry's low bit
 // says whether the flux is added or taken.
 void Remapper::gather_fluxes(RemapFields& f, bool limiter) {
-  const Mesh& m = mesh_;
-  const Index nz = m.num_zones(), np = m.num_points(), nc = m.num_corners();
-  const std::size_t nf = f.specific.size(), nc2 = 2 * static_cast<std::size_t>(nc);
-  const auto sum = [](const Index* begin, const Index* end, const double* value) {
-    double s = 0;
-    for (const Index* e = begin; e != end; ++e) {
-      const double v = value[*e >> 1];
-      if (*e & 1)
-        s -= v;
-      else
-        s += v;
-    }
-    return s;
-  };
-  // The donor remainder bound (remainder_keep), from every zone's factors before any flux changes.
-  if (limiter && remainder_bound_ && nf > 0) {
-    keep_.assign(nf * static_cast<std::size_t>(nz), 1.0);
-    int any = 0;
+  if (limiter && remainder_bound_ && !f.specific.empty()) slot_remainder_bound(f);
+  gather_zone_values(f);
+  gather_corner_point_sums(f);
+}
+
+// The donor remainder bound (remainder_keep) on the slots, from every zone's factors before
+// any flux changes.
+void Remapper::slot_remainder_bound(const RemapFields& f) {
+  const Index nz = mesh_.num_zones();
+  const std::size_t nf = f.specific.size();
+  keep_.assign(nf * static_cast<std::size_t>(nz), 1.0);
+  int any = 0;
 #pragma omp parallel for schedule(static) reduction(max : any) if (nz > kParallelMin)
-    for (Index z = 0; z < nz; ++z) {
-      if (!zone_active_[z]) continue;  // no flux, and no bounds computed
-      const Index* lb = zone_list_.data() + zone_list_begin_[z];
-      const Index* le = zone_list_.data() + zone_list_begin_[z + 1];
-      double dm = 0;
-      for (const Index* e = lb; e != le; ++e) dm += (*e & 1) ? -flux_mass_[*e >> 1] : flux_mass_[*e >> 1];
-      const double m0 = f.zone_mass[z], m1 = m0 + dm;
-      if (!(m1 > 0)) continue;
-      for (std::size_t i = 0; i < nf; ++i) {
-        const double t = remainder_keep(f, z, i, m0, m1);
-        keep_[i * nz + z] = t;
-        any = std::max(any, t != 1.0 ? 1 : 0);
-      }
-    }
-    if (any) {
-      long bounded = 0;
-#pragma omp parallel for schedule(static) reduction(+ : bounded) if (nz > kParallelMin)
-      for (Index z = 0; z < nz; ++z) {
-        bool acted = false;
-        for (std::size_t i = 0; i < nf; ++i)
-          if (keep_[i * nz + z] != 1.0) keep_outflows(f, z, i, keep_[i * nz + z]), acted = true;
-        bounded += acted;
-      }
-      bounded_ += bounded;
+  for (Index z = 0; z < nz; ++z) {
+    if (!zone_active_[z]) continue;  // no flux, and no bounds computed
+    const Index* lb = zone_list_.data() + zone_list_begin_[z];
+    const Index* le = zone_list_.data() + zone_list_begin_[z + 1];
+    double dm = 0;
+    for (const Index* e = lb; e != le; ++e) dm += (*e & 1) ? -flux_mass_[*e >> 1] : flux_mass_[*e >> 1];
+    const double m0 = f.zone_mass[z], m1 = m0 + dm;
+    if (!(m1 > 0)) continue;
+    for (std::size_t i = 0; i < nf; ++i) {
+      const double t = remainder_keep(f, z, i, m0, m1);
+      keep_[i * nz + z] = t;
+      any = std::max(any, t != 1.0 ? 1 : 0);
     }
   }
+  if (any) {
+    long bounded = 0;
+#pragma omp parallel for schedule(static) reduction(+ : bounded) if (nz > kParallelMin)
+    for (Index z = 0; z < nz; ++z) {
+      bool acted = false;
+      for (std::size_t i = 0; i < nf; ++i)
+        if (keep_[i * nz + z] != 1.0) keep_outflows(f, z, i, keep_[i * nz + z]), acted = true;
+      bounded += acted;
+    }
+    bounded_ += bounded;
+  }
+}
 
+// New zone values from the slots: mass plus fluxes, specific quantities from their
+// mass-weighted sums.
+void Remapper::gather_zone_values(RemapFields& f) {
+  const Index nz = mesh_.num_zones();
+  const std::size_t nf = f.specific.size(), nc2 = 2 * static_cast<std::size_t>(mesh_.num_corners());
   Index failed_zone = std::numeric_limits<Index>::max();
 #pragma omp parallel for schedule(static) reduction(min : failed_zone) if (nz > kParallelMin)
   for (Index z = 0; z < nz; ++z) {
     const Index* lb = zone_list_.data() + zone_list_begin_[z];
     const Index* le = zone_list_.data() + zone_list_begin_[z + 1];
-    // New zone values: mass plus fluxes, specific quantities from their mass-weighted sums.
     double dm = 0;
     char touched = 0;
     for (const Index* e = lb; e != le; ++e) {
@@ -501,19 +543,26 @@ void Remapper::gather_fluxes(RemapFields& f, bool limiter) {
     }
     for (std::size_t i = 0; i < nf; ++i) {
       double& q = f.specific[i][z];
-      if (std::isfinite(q)) q = (m0 * q + sum(lb, le, flux_q_.data() + i * nc2)) / m1;
+      if (std::isfinite(q)) q = (m0 * q + signed_sum(lb, le, flux_q_.data() + i * nc2)) / m1;
     }
     f.zone_mass[z] = m1;
   }
   if (failed_zone != std::numeric_limits<Index>::max()) {
     const Index* lb = zone_list_.data() + zone_list_begin_[failed_zone];
     const Index* le = zone_list_.data() + zone_list_begin_[failed_zone + 1];
-    fail_mass(m, "zone", failed_zone, f.zone_mass[failed_zone] + sum(lb, le, flux_mass_.data()));
+    fail_mass(mesh_, "zone", failed_zone, f.zone_mass[failed_zone] + signed_sum(lb, le, flux_mass_.data()));
   }
+}
+
+// The new corner masses, and the points' sums of mass, momentum and kinetic energy from the
+// centre segments' slots (written back by point_momentum).
+void Remapper::gather_corner_point_sums(RemapFields& f) {
+  const Index np = mesh_.num_points(), nc = mesh_.num_corners();
+  const std::size_t nc2 = 2 * static_cast<std::size_t>(nc);
 #pragma omp parallel for schedule(static) if (nc > kParallelMin)
   for (Index c = 0; c < nc; ++c) {
-    const double dm = sum(corner_list_.data() + corner_list_begin_[c], corner_list_.data() + corner_list_begin_[c + 1],
-                          flux_mass_.data());
+    const double dm = signed_sum(corner_list_.data() + corner_list_begin_[c],
+                                 corner_list_.data() + corner_list_begin_[c + 1], flux_mass_.data());
     if (dm != 0) f.corner_mass[c] += dm;
   }
 #pragma omp parallel for schedule(static) if (np > kParallelMin)
@@ -538,20 +587,17 @@ void Remapper::gather_fluxes(RemapFields& f, bool limiter) {
   }
 }
 
+// Where anything happens. A face whose ends did not move sweeps no area (the flux loop skips
+// it by that test), so a zone none of whose points moved neither gives nor takes anything: it needs
+// no gradient, bounds or corner values (active zones do); a point gives momentum only
+// through the centre segments of active zones, so only their points need a velocity
+// gradient ("near" points, and the rz axis points, whose velocity is the reconstruction);
+// the gradients read the old geometry of the zones around them ("near" zones). The values
+// computed are the same bits as when every zone computes them (docs/ale.md, "Remap cost").
 template <bool Rz>
-void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, const double* yn, RemapFields& f,
-                          bool limiter) {
+void Remapper::mark_active(const double* xo, const double* yo, const double* xn, const double* yn) {
   const Mesh& m = mesh_;
-  const Index nz = m.num_zones(), np = m.num_points(), nc = m.num_corners();
-  const std::size_t nf = f.specific.size();
-
-  // Where anything happens. A face whose ends did not move sweeps no area (the flux loop skips
-  // it by that test), so a zone none of whose points moved neither gives nor takes anything: it needs
-  // no gradient, bounds or corner values (active zones do); a point gives momentum only
-  // through the centre segments of active zones, so only their points need a velocity
-  // gradient ("near" points, and the rz axis points, whose velocity is the reconstruction);
-  // the gradients read the old geometry of the zones around them ("near" zones). The values
-  // computed are the same bits as when every zone computes them (docs/ale.md, "Remap cost").
+  const Index nz = m.num_zones(), np = m.num_points();
   Index moved = 0;
 #pragma omp parallel for schedule(static) reduction(+ : moved) if (np > kParallelMin)
   for (Index p = 0; p < np; ++p) {
@@ -588,10 +634,15 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
       zone_near_[z] = a;
     }
   }
+}
 
-  // Old geometry: areas, centroids (the reconstruction's centres), densities, and the old
-  // corners (x_k, mid(k, k+1), centre, mid(k-1, k)): their own densities m_c / A_c feed the
-  // centre-segment fluxes, so that a corner never gives more than it holds.
+// Old geometry: areas, centroids (the reconstruction's centres), densities, and the old
+// corners (x_k, mid(k, k+1), centre, mid(k-1, k)): their own densities m_c / A_c feed the
+// centre-segment fluxes, so that a corner never gives more than it holds.
+template <bool Rz>
+void Remapper::old_geometry(const double* xo, const double* yo, const RemapFields& f) {
+  const Mesh& m = mesh_;
+  const Index nz = m.num_zones();
 #pragma omp parallel for schedule(static) if (nz > kParallelMin)
   for (Index z = 0; z < nz; ++z) {
     if (!zone_near_[z]) continue;
@@ -618,26 +669,40 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
     }
     rho_[z] = f.zone_mass[z] / area_[z];
     if (!zone_active_[z]) continue;
-    double gox = 0, goy = 0;
-    for (Index k = 0; k < n; ++k) gox += xo[m.corner_point[b + k]], goy += yo[m.corner_point[b + k]];
-    gox /= n, goy /= n;
-    gox_[z] = gox, goy_[z] = goy;
-    for (Index k = 0; k < n; ++k) {
-      const Index p = m.corner_point[b + k], pn = m.corner_point[b + (k + 1 == n ? 0 : k + 1)],
-                  pp = m.corner_point[b + (k == 0 ? n - 1 : k - 1)];
-      const double qx[4] = {xo[p], 0.5 * (xo[p] + xo[pn]), gox, 0.5 * (xo[p] + xo[pp])};
-      const double qy[4] = {yo[p], 0.5 * (yo[p] + yo[pn]), goy, 0.5 * (yo[p] + yo[pp])};
-      // The limiter's offsets from the centroid: the point, and the side's midpoint if shared.
-      const bool shared = side_zone_[b + k] >= 0;
-      lvx_[b + k] = qx[0] - cx_[z], lvy_[b + k] = qy[0] - cy_[z];
-      lmx_[b + k] = shared ? qx[1] - cx_[z] : 0.0, lmy_[b + k] = shared ? qy[1] - cy_[z] : 0.0;
-      const Swept a = swept_quad<Rz>(qx[0], qy[0], qx[1], qy[1], qx[2], qy[2], qx[3], qy[3], 0.0, 0.0);
-      crho_[b + k] = a.area > 0 ? f.corner_mass[b + k] / a.area : rho_[z];
-      ccx_[b + k] = a.area > 0 ? a.mx / a.area : gox;
-      ccy_[b + k] = a.area > 0 ? a.my / a.area : goy;
-    }
+    old_corners<Rz>(z, xo, yo, f);
   }
-  // Least-squares matrices.
+}
+
+// The old corners of active zone z: the mean of its vertices (the corners' centre point), the
+// limiter's offsets from the centroid, and each corner's density and centroid.
+template <bool Rz>
+void Remapper::old_corners(Index z, const double* xo, const double* yo, const RemapFields& f) {
+  const Mesh& m = mesh_;
+  const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
+  double gox = 0, goy = 0;
+  for (Index k = 0; k < n; ++k) gox += xo[m.corner_point[b + k]], goy += yo[m.corner_point[b + k]];
+  gox /= n, goy /= n;
+  gox_[z] = gox, goy_[z] = goy;
+  for (Index k = 0; k < n; ++k) {
+    const Index p = m.corner_point[b + k], pn = m.corner_point[b + (k + 1 == n ? 0 : k + 1)],
+                pp = m.corner_point[b + (k == 0 ? n - 1 : k - 1)];
+    const double qx[4] = {xo[p], 0.5 * (xo[p] + xo[pn]), gox, 0.5 * (xo[p] + xo[pp])};
+    const double qy[4] = {yo[p], 0.5 * (yo[p] + yo[pn]), goy, 0.5 * (yo[p] + yo[pp])};
+    // The limiter's offsets from the centroid: the point, and the side's midpoint if shared.
+    const bool shared = side_zone_[b + k] >= 0;
+    lvx_[b + k] = qx[0] - cx_[z], lvy_[b + k] = qy[0] - cy_[z];
+    lmx_[b + k] = shared ? qx[1] - cx_[z] : 0.0, lmy_[b + k] = shared ? qy[1] - cy_[z] : 0.0;
+    const Swept a = swept_quad<Rz>(qx[0], qy[0], qx[1], qy[1], qx[2], qy[2], qx[3], qy[3], 0.0, 0.0);
+    crho_[b + k] = a.area > 0 ? f.corner_mass[b + k] / a.area : rho_[z];
+    ccx_[b + k] = a.area > 0 ? a.mx / a.area : gox;
+    ccy_[b + k] = a.area > 0 ? a.my / a.area : goy;
+  }
+}
+
+// Least-squares matrices of the zone stencils (centroids) and the point stencils (old
+// positions), and the offsets every field's gradient reads.
+void Remapper::least_squares_matrices(const double* xo, const double* yo) {
+  const Index nz = mesh_.num_zones(), np = mesh_.num_points();
 #pragma omp parallel for schedule(static) if (nz > kParallelMin)
   for (Index z = 0; z < nz; ++z) {
     if (!zone_active_[z]) continue;
@@ -660,16 +725,27 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
     }
     pseudo_inverse(a, b, c, &plsq_[3 * static_cast<std::size_t>(p)]);
   }
+}
+
+// The reconstruction's gradients (limited if `limiter`): the zone density with its bounds,
+// every specific quantity with its bounds, and the point velocities.
+void Remapper::reconstruction_gradients(const RemapFields& f, bool limiter) {
+  const Index nz = mesh_.num_zones();
+  const std::size_t nf = f.specific.size();
   zone_gradients(rho_.data(), limiter, grx_.data(), gry_.data(), rlo_.data(), rhi_.data());
   qgx_.resize(nf * nz), qgy_.resize(nf * nz), qmin_.resize(nf * nz), qmax_.resize(nf * nz);
-  flux_q_.resize(nf * 2 * static_cast<std::size_t>(nc));
+  flux_q_.resize(nf * 2 * static_cast<std::size_t>(mesh_.num_corners()));
   for (std::size_t i = 0; i < nf; ++i)
     zone_gradients(f.specific[i], limiter, qgx_.data() + i * nz, qgy_.data() + i * nz, qmin_.data() + i * nz,
                    qmax_.data() + i * nz);
   point_gradients(f.vx, f.vy, limiter, vgx_.data(), vgy_.data(), wgx_.data(), wgy_.data());
+}
 
-  // The corner gradient: the zone's limited one, scaled where needed so that the corner's
-  // reconstruction stays non-negative at its vertices.
+// The corner gradient: the zone's limited one, scaled where needed so that the corner's
+// reconstruction stays non-negative at its vertices.
+void Remapper::corner_gradients(const double* xo, const double* yo) {
+  const Mesh& m = mesh_;
+  const Index nz = m.num_zones();
 #pragma omp parallel for schedule(static) if (nz > kParallelMin)
   for (Index z = 0; z < nz; ++z) {
     if (!zone_active_[z]) continue;
@@ -694,232 +770,261 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
       cgx_[c] = phi * grx_[z], cgy_[c] = phi * gry_[z];
     }
   }
+}
 
-  // The fluxes, face by face (each face once, from the zone that owns it), into their slots.
-  // On one thread (or below the parallel loops' size) each flux goes straight into the sums
-  // of its cells instead, in the order in which the gathers below would add it: the same
-  // bits without the slots' second pass (docs/ale.md, "Remap cost").
-  const std::size_t nc2 = 2 * static_cast<std::size_t>(nc);
-  const bool bound = limiter && remainder_bound_ && nf > 0;  // the donor remainder bound needs the half sides' slots
-  if (bound) keep_.resize(nf * static_cast<std::size_t>(nz), 1.0);
-  const auto fluxes = [&](const bool direct) {
-    if (direct) {
-      std::fill(zone_dm_.begin(), zone_dm_.end(), 0.0);
-      std::fill(corner_dm_.begin(), corner_dm_.end(), 0.0);
-      zone_dq_.assign(nf * nz, 0.0);  // allocates at the first remap only
-      std::fill(zone_hit_.begin(), zone_hit_.end(), 0);
-      for (auto* v : {&dm_point_, &dpx_, &dpy_, &dke_}) std::fill(v->begin(), v->end(), 0.0);
-      std::fill(point_touched_.begin(), point_touched_.end(), 0);
-    }
-#pragma omp parallel for schedule(static) if (nz > kParallelMin && !direct)
-    for (Index z = 0; z < nz; ++z) {
-      const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
-      if (!zone_active_[z]) {  // every face it owns sweeps nothing: empty slots, nothing to add
-        if (direct && !bound) continue;
-        for (Index c = b; c < b + n; ++c) {
-          if (side_zone_[c] > z)
-            for (std::size_t slot = 2 * static_cast<std::size_t>(c); slot < 2 * static_cast<std::size_t>(c) + 2;
-                 ++slot) {
-              flux_mass_[slot] = 0, flux_active_[slot] = 0;
-              for (std::size_t i = 0; i < nf; ++i) flux_q_[i * nc2 + slot] = 0;
-            }
-          if (!direct) flux_mass_[nc2 + c] = seg_px_[c] = seg_py_[c] = seg_ke_[c] = 0, flux_active_[nc2 + c] = 0;
-        }
-        continue;
-      }
-      double gnx = 0, gny = 0;
-      for (Index k = 0; k < n; ++k) {
-        const Index p = m.corner_point[b + k];
-        gnx += xn[p], gny += yn[p];
-      }
-      gnx /= n, gny /= n;
-      const double gox = gox_[z], goy = goy_[z];
-      const double* corner_rho = crho_.data() + b;
-      const double* corner_cx = ccx_.data() + b;
-      const double* corner_cy = ccy_.data() + b;
-      const double* corner_gx = cgx_.data() + b;
-      const double* corner_gy = cgy_.data() + b;
-      for (Index k = 0; k < n; ++k) {
-        const Index kp = (k + 1 == n) ? 0 : k + 1;
-        const Index c = b + k;
-        const Index pa = m.corner_point[c], pb = m.corner_point[b + kp];
-        const double mox = 0.5 * (xo[pa] + xo[pb]), moy = 0.5 * (yo[pa] + yo[pb]);
-        const double mnx = 0.5 * (xn[pa] + xn[pb]), mny = 0.5 * (yn[pa] + yn[pb]);
-        // Half sides, once per interior side (from the lower zone).
-        const Index nb = side_zone_[c];
-        if (nb > z) {
-          // A side neither of whose ends moved is skipped by that test, not by its swept area
-          // being 0: the area is exactly 0 only if the compiler does not contract its products
-          // into fused multiply-adds, and a zone at rest (no gradients computed) must never give.
-          const bool still = !point_moved_[pa] && !point_moved_[pb];
-          for (int h = 0; h < 2; ++h) {
-            // Half h: a -> mid (corner c) or mid -> b (corner c1); the cell on the left gains.
-            const std::size_t slot = 2 * static_cast<std::size_t>(c) + h;
-            const double ax0 = h == 0 ? xo[pa] : mox, ay0 = h == 0 ? yo[pa] : moy;
-            const double ax1 = h == 0 ? xn[pa] : mnx, ay1 = h == 0 ? yn[pa] : mny;
-            const double bx0 = h == 0 ? mox : xo[pb], by0 = h == 0 ? moy : yo[pb];
-            const double bx1 = h == 0 ? mnx : xn[pb], by1 = h == 0 ? mny : yn[pb];
-            const Swept s0 = still ? Swept{} : swept_quad<Rz>(ax0, ay0, ax1, ay1, bx1, by1, bx0, by0, 0.0, 0.0);
-            if (still || (s0.area == 0 && s0.mx == 0 && s0.my == 0)) {
-              if (direct && !bound) continue;  // adds nothing
-              flux_mass_[slot] = 0, flux_active_[slot] = 0;
-              for (std::size_t i = 0; i < nf; ++i) flux_q_[i * nc2 + slot] = 0;
-              continue;
-            }
-            const Index d = s0.area > 0 ? nb : z;
-            const Index left = h == 0 ? c : b + kp, right = h == 0 ? side_corner0_[c] : side_corner1_[c];
-            // The donor corner's density and (zone) gradient: a corner never gives more than
-            // it holds, and corner densities stay tied to their neighbours'.
-            const Index dc = s0.area > 0 ? right : left;
-            const double mx = s0.mx - ccx_[dc] * s0.area, my = s0.my - ccy_[dc] * s0.area;
-            double flux = crho_[dc] * s0.area + cgx_[dc] * mx + cgy_[dc] * my;
-            // Its mean density within the donor zone's bounds (corner densities may lie
-            // outside them): no new extrema.
-            if (s0.simple && limiter) {
-              const double lo = s0.area * rlo_[d], hi = s0.area * rhi_[d];
-              flux = std::clamp(flux, std::min(lo, hi), std::max(lo, hi));
-            }
-            if (direct) {
-              zone_dm_[z] += flux, zone_dm_[nb] -= flux;
-              corner_dm_[left] += flux, corner_dm_[right] -= flux;
-              zone_hit_[z] = zone_hit_[nb] = 1;
-            }
-            if (!direct || bound) flux_mass_[slot] = flux, flux_active_[slot] = 1;
-            for (std::size_t i = 0; i < nf; ++i) {
-              const double qd = f.specific[i][d];
-              double fq = 0;
-              if (std::isfinite(qd)) {
-                const std::size_t id = i * nz + d;
-                const double mqx = s0.mx - cx_[d] * s0.area, mqy = s0.my - cy_[d] * s0.area;
-                fq = qd * flux + crho_[dc] * (qgx_[id] * mqx + qgy_[id] * mqy);
-                // The flux's mean value stays within the donor's neighbourhood bounds (a jump
-                // of density inside the swept region could push it out): a repair that keeps
-                // conservation, since the same flux leaves one zone and enters the other.
-                // (A bow-tie region's mean is no point value: it is left alone.)
-                if (s0.simple) {
-                  const double lo = flux * qmin_[id], hi = flux * qmax_[id];
-                  fq = std::clamp(fq, std::min(lo, hi), std::max(lo, hi));
-                }
-              }
-              if (direct) zone_dq_[i * nz + z] += fq, zone_dq_[i * nz + nb] -= fq;
-              if (!direct || bound) flux_q_[i * nc2 + slot] = fq;
-            }
-          }
-        }
-        // Centre segment mid(k, k+1) -> centre: corner c on the left, corner c1 on the right.
-        const std::size_t slot = nc2 + c;
-        const Swept s = swept_quad<Rz>(mox, moy, mnx, mny, gnx, gny, gox, goy, 0.0, 0.0);
-        if ((s.area == 0 && s.mx == 0 && s.my == 0) || (Rz && !segment_point_[c])) {
-          if (!direct) flux_mass_[slot] = seg_px_[c] = seg_py_[c] = seg_ke_[c] = 0, flux_active_[slot] = 0;
-          continue;
-        }
-        const Index kd = s.area > 0 ? kp : k;  // the donor corner
-        const double flux = corner_rho[kd] * s.area + corner_gx[kd] * (s.mx - corner_cx[kd] * s.area) +
-                            corner_gy[kd] * (s.my - corner_cy[kd] * s.area);
-        const Index pd = s.area > 0 ? pb : pa;
-        const double mx = s.mx - xo[pd] * s.area, my = s.my - yo[pd] * s.area;
-        const double u = f.vx[pd], w = f.vy[pd];
-        const double du = vgx_[pd] * mx + vgy_[pd] * my, dw = wgx_[pd] * mx + wgy_[pd] * my;
-        const double px = u * flux + corner_rho[kd] * du;
-        const double py = w * flux + corner_rho[kd] * dw;
-        const double ke = 0.5 * (u * u + w * w) * flux + corner_rho[kd] * (u * du + w * dw);
-        if (direct) {
-          corner_dm_[c] += flux, corner_dm_[b + kp] -= flux;
-          dm_point_[pa] += flux, dpx_[pa] += px, dpy_[pa] += py, dke_[pa] += ke, point_touched_[pa] = 1;
-          dm_point_[pb] -= flux, dpx_[pb] -= px, dpy_[pb] -= py, dke_[pb] -= ke, point_touched_[pb] = 1;
-        } else {
-          flux_mass_[slot] = flux, flux_active_[slot] = 1;
-          seg_px_[c] = px, seg_py_[c] = py, seg_ke_[c] = ke;
-        }
-      }
-    }
-  };
-  const bool direct = nz <= kParallelMin || omp_get_max_threads() == 1;
-  fluxes(direct);
-  // The donor remainder bound (remainder_keep) on the direct sums: the half sides' fluxes are
-  // in their slots too; where the bound acts (a zone's new value outside its bounds, tested
-  // on the same sums as gather_fluxes tests), the factors of all such zones are taken first,
-  // then their outflows changed, and the zones next to a changed flux summed again from the
-  // slots in the same order: bitwise what gather_fluxes gives.
-  if (direct && bound) {
-    bound_zones_.clear();
-    for (Index z = 0; z < nz; ++z) {
-      if (!zone_hit_[z]) continue;  // no flux: its value stays (a rounding at most)
-      const double m0 = f.zone_mass[z], m1 = m0 + zone_dm_[z];
-      if (!(m1 > 0)) continue;
-      bool acts = false;
-      for (std::size_t i = 0; i < nf && !acts; ++i) {
-        const double q = f.specific[i][z];
-        if (!std::isfinite(q)) continue;
-        const std::size_t id = i * nz + z;
-        acts = beyond_bounds((m0 * q + zone_dq_[id]) / m1, qmin_[id], qmax_[id], m0, m1);
-      }
-      if (!acts) continue;
-      bound_zones_.push_back(z);  // capacity nz: no allocation
-      for (std::size_t i = 0; i < nf; ++i) keep_[i * nz + z] = remainder_keep(f, z, i, m0, m1);
-    }
-    for (const Index z : bound_zones_) {
-      bool acted = false;
-      for (std::size_t i = 0; i < nf; ++i)
-        if (keep_[i * nz + z] != 1.0) {
-          acted = true;
-          keep_outflows(f, z, i, keep_[i * nz + z]);
-          // The zone and the neighbours across its half sides: their sums again.
-          zone_resum_[z] = 1;
-          for (Index e = zone_list_begin_[z]; e < zone_list_begin_[z + 1]; ++e) {
-            const Index c = zone_list_[e] >> 2;  // slot 2c + h
-            zone_resum_[m.corner_zone[c]] = zone_resum_[side_zone_[c]] = 1;
-          }
-        }
-      bounded_ += acted;
-    }
-    for (Index z = 0; z < nz; ++z) {
-      if (!zone_resum_[z]) continue;
-      zone_resum_[z] = 0;
-      const Index* lb = zone_list_.data() + zone_list_begin_[z];
-      const Index* le = zone_list_.data() + zone_list_begin_[z + 1];
-      for (std::size_t i = 0; i < nf; ++i) {
-        const double* fq = flux_q_.data() + i * nc2;
-        double sum = 0;
-        for (const Index* e = lb; e != le; ++e) {
-          if (*e & 1)
-            sum -= fq[*e >> 1];
-          else
-            sum += fq[*e >> 1];
-        }
-        zone_dq_[i * nz + z] = sum;
-      }
-    }
-  }
+// One side of a zone during the flux sweep: the zone, its corners at the side's two points,
+// the points, and the side's midpoint on the old and the new mesh.
+struct Remapper::ZoneSide {
+  Index z, c, c1, pa, pb;
+  double mox, moy, mnx, mny;
+};
 
-  Index failed_zone = std::numeric_limits<Index>::max();
+// The fluxes, face by face (each face once, from the zone that owns it), into their slots.
+// On one thread (or below the parallel loops' size) each flux goes straight into the sums
+// of its cells instead (`direct`), in the order in which the gathers would add it: the same
+// bits without the slots' second pass (docs/ale.md, "Remap cost"). `bound`: the donor
+// remainder bound needs the half sides' slots in the direct mode too.
+template <bool Rz>
+void Remapper::face_fluxes(const double* xo, const double* yo, const double* xn, const double* yn, const RemapFields& f,
+                           bool limiter, bool direct, bool bound) {
+  const Mesh& m = mesh_;
+  const Index nz = m.num_zones();
+  const std::size_t nf = f.specific.size();
   if (direct) {
-    // The sums are there: the new zone and corner values.
-    for (Index z = 0; z < nz; ++z) {
-      if (!zone_hit_[z]) continue;
-      const double m0 = f.zone_mass[z], m1 = m0 + zone_dm_[z];
-      if (!(m1 > 0)) {
-        failed_zone = std::min(failed_zone, z);
-        continue;
-      }
-      for (std::size_t i = 0; i < nf; ++i) {
-        double& q = f.specific[i][z];
-        if (std::isfinite(q)) q = (m0 * q + zone_dq_[i * nz + z]) / m1;
-      }
-      f.zone_mass[z] = m1;
-    }
-    if (failed_zone != std::numeric_limits<Index>::max())
-      fail_mass(m, "zone", failed_zone, f.zone_mass[failed_zone] + zone_dm_[failed_zone]);
-    for (Index c = 0; c < nc; ++c)
-      if (corner_dm_[c] != 0) f.corner_mass[c] += corner_dm_[c];
-  } else {
-    gather_fluxes(f, limiter);
+    std::fill(zone_dm_.begin(), zone_dm_.end(), 0.0);
+    std::fill(corner_dm_.begin(), corner_dm_.end(), 0.0);
+    zone_dq_.assign(nf * nz, 0.0);  // allocates at the first remap only
+    std::fill(zone_hit_.begin(), zone_hit_.end(), 0);
+    for (auto* v : {&dm_point_, &dpx_, &dpy_, &dke_}) std::fill(v->begin(), v->end(), 0.0);
+    std::fill(point_touched_.begin(), point_touched_.end(), 0);
   }
-  // Repair: a zone whose corner kept less than a hundredth of its share (subcell densities
-  // can drift apart where the mesh and the flow shear; a swept region then takes more than
-  // the corner holds) gets its corner masses reset to its new mass shared by new corner area.
-  // The zone mass stays; the points' masses change by the difference, their momentum does
-  // not, and the kinetic energy this changes is part of the fix-up.
+#pragma omp parallel for schedule(static) if (nz > kParallelMin && !direct)
+  for (Index z = 0; z < nz; ++z) {
+    const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
+    if (!zone_active_[z]) {  // every face it owns sweeps nothing: empty slots, nothing to add
+      if (!(direct && !bound)) clear_zone_slots(z, nf, direct);
+      continue;
+    }
+    double gnx = 0, gny = 0;
+    for (Index k = 0; k < n; ++k) {
+      const Index p = m.corner_point[b + k];
+      gnx += xn[p], gny += yn[p];
+    }
+    gnx /= n, gny /= n;
+    for (Index k = 0; k < n; ++k) {
+      const Index kp = (k + 1 == n) ? 0 : k + 1;
+      ZoneSide side;
+      side.z = z, side.c = b + k, side.c1 = b + kp;
+      side.pa = m.corner_point[side.c], side.pb = m.corner_point[side.c1];
+      side.mox = 0.5 * (xo[side.pa] + xo[side.pb]), side.moy = 0.5 * (yo[side.pa] + yo[side.pb]);
+      side.mnx = 0.5 * (xn[side.pa] + xn[side.pb]), side.mny = 0.5 * (yn[side.pa] + yn[side.pb]);
+      // Half sides, once per interior side (from the lower zone).
+      if (side_zone_[side.c] > z) half_side_fluxes<Rz>(side, xo, yo, xn, yn, f, limiter, direct, bound);
+      centre_segment_flux<Rz>(side, gnx, gny, xo, yo, f, direct);
+    }
+  }
+}
+
+// The slots of a zone none of whose points moved: zero (they may hold a previous remap's).
+void Remapper::clear_zone_slots(Index z, std::size_t nf, bool direct) {
+  const Index b = mesh_.zone_corner_begin[z], n = mesh_.zone_corner_begin[z + 1] - b;
+  const std::size_t nc2 = 2 * static_cast<std::size_t>(mesh_.num_corners());
+  for (Index c = b; c < b + n; ++c) {
+    if (side_zone_[c] > z)
+      for (std::size_t slot = 2 * static_cast<std::size_t>(c); slot < 2 * static_cast<std::size_t>(c) + 2; ++slot) {
+        flux_mass_[slot] = 0, flux_active_[slot] = 0;
+        for (std::size_t i = 0; i < nf; ++i) flux_q_[i * nc2 + slot] = 0;
+      }
+    if (!direct) flux_mass_[nc2 + c] = seg_px_[c] = seg_py_[c] = seg_ke_[c] = 0, flux_active_[nc2 + c] = 0;
+  }
+}
+
+// The two half sides of an interior side owned by side.z: mass and every specific quantity
+// between the zone and its neighbour (and between the corners at the side's points).
+template <bool Rz>
+void Remapper::half_side_fluxes(const ZoneSide& side, const double* xo, const double* yo, const double* xn,
+                                const double* yn, const RemapFields& f, bool limiter, bool direct, bool bound) {
+  const Index nz = mesh_.num_zones();
+  const std::size_t nf = f.specific.size(), nc2 = 2 * static_cast<std::size_t>(mesh_.num_corners());
+  const Index z = side.z, c = side.c, pa = side.pa, pb = side.pb, nb = side_zone_[c];
+  const double mox = side.mox, moy = side.moy, mnx = side.mnx, mny = side.mny;
+  // A side neither of whose ends moved is skipped by that test, not by its swept area
+  // being 0: the area is exactly 0 only if the compiler does not contract its products
+  // into fused multiply-adds, and a zone at rest (no gradients computed) must never give.
+  const bool still = !point_moved_[pa] && !point_moved_[pb];
+  for (int h = 0; h < 2; ++h) {
+    // Half h: a -> mid (corner c) or mid -> b (corner c1); the cell on the left gains.
+    const std::size_t slot = 2 * static_cast<std::size_t>(c) + h;
+    const double ax0 = h == 0 ? xo[pa] : mox, ay0 = h == 0 ? yo[pa] : moy;
+    const double ax1 = h == 0 ? xn[pa] : mnx, ay1 = h == 0 ? yn[pa] : mny;
+    const double bx0 = h == 0 ? mox : xo[pb], by0 = h == 0 ? moy : yo[pb];
+    const double bx1 = h == 0 ? mnx : xn[pb], by1 = h == 0 ? mny : yn[pb];
+    const Swept s0 = still ? Swept{} : swept_quad<Rz>(ax0, ay0, ax1, ay1, bx1, by1, bx0, by0, 0.0, 0.0);
+    if (still || (s0.area == 0 && s0.mx == 0 && s0.my == 0)) {
+      if (direct && !bound) continue;  // adds nothing
+      flux_mass_[slot] = 0, flux_active_[slot] = 0;
+      for (std::size_t i = 0; i < nf; ++i) flux_q_[i * nc2 + slot] = 0;
+      continue;
+    }
+    const Index d = s0.area > 0 ? nb : z;
+    const Index left = h == 0 ? c : side.c1, right = h == 0 ? side_corner0_[c] : side_corner1_[c];
+    // The donor corner's density and (zone) gradient: a corner never gives more than
+    // it holds, and corner densities stay tied to their neighbours'.
+    const Index dc = s0.area > 0 ? right : left;
+    const double mx = s0.mx - ccx_[dc] * s0.area, my = s0.my - ccy_[dc] * s0.area;
+    double flux = crho_[dc] * s0.area + cgx_[dc] * mx + cgy_[dc] * my;
+    // Its mean density within the donor zone's bounds (corner densities may lie
+    // outside them): no new extrema.
+    if (s0.simple && limiter) {
+      const double lo = s0.area * rlo_[d], hi = s0.area * rhi_[d];
+      flux = std::clamp(flux, std::min(lo, hi), std::max(lo, hi));
+    }
+    if (direct) {
+      zone_dm_[z] += flux, zone_dm_[nb] -= flux;
+      corner_dm_[left] += flux, corner_dm_[right] -= flux;
+      zone_hit_[z] = zone_hit_[nb] = 1;
+    }
+    if (!direct || bound) flux_mass_[slot] = flux, flux_active_[slot] = 1;
+    for (std::size_t i = 0; i < nf; ++i) {
+      const double qd = f.specific[i][d];
+      double fq = 0;
+      if (std::isfinite(qd)) {
+        const std::size_t id = i * nz + d;
+        const double mqx = s0.mx - cx_[d] * s0.area, mqy = s0.my - cy_[d] * s0.area;
+        fq = qd * flux + crho_[dc] * (qgx_[id] * mqx + qgy_[id] * mqy);
+        // The flux's mean value stays within the donor's neighbourhood bounds (a jump
+        // of density inside the swept region could push it out): a repair that keeps
+        // conservation, since the same flux leaves one zone and enters the other.
+        // (A bow-tie region's mean is no point value: it is left alone.)
+        if (s0.simple) {
+          const double lo = flux * qmin_[id], hi = flux * qmax_[id];
+          fq = std::clamp(fq, std::min(lo, hi), std::max(lo, hi));
+        }
+      }
+      if (direct) zone_dq_[i * nz + z] += fq, zone_dq_[i * nz + nb] -= fq;
+      if (!direct || bound) flux_q_[i * nc2 + slot] = fq;
+    }
+  }
+}
+
+// Centre segment mid(k, k+1) -> centre (gn on the new mesh, the zone's gox/goy on the old):
+// mass between corners c (on the left) and c1 of the same zone, and with it momentum and
+// kinetic energy between the side's points.
+template <bool Rz>
+void Remapper::centre_segment_flux(const ZoneSide& side, double gnx, double gny, const double* xo, const double* yo,
+                                   const RemapFields& f, bool direct) {
+  const std::size_t nc2 = 2 * static_cast<std::size_t>(mesh_.num_corners());
+  const Index c = side.c, pa = side.pa, pb = side.pb;
+  const std::size_t slot = nc2 + c;
+  const Swept s =
+      swept_quad<Rz>(side.mox, side.moy, side.mnx, side.mny, gnx, gny, gox_[side.z], goy_[side.z], 0.0, 0.0);
+  if ((s.area == 0 && s.mx == 0 && s.my == 0) || (Rz && !segment_point_[c])) {
+    if (!direct) flux_mass_[slot] = seg_px_[c] = seg_py_[c] = seg_ke_[c] = 0, flux_active_[slot] = 0;
+    return;
+  }
+  const Index cd = s.area > 0 ? side.c1 : c;  // the donor corner
+  const double flux =
+      crho_[cd] * s.area + cgx_[cd] * (s.mx - ccx_[cd] * s.area) + cgy_[cd] * (s.my - ccy_[cd] * s.area);
+  const Index pd = s.area > 0 ? pb : pa;
+  const double mx = s.mx - xo[pd] * s.area, my = s.my - yo[pd] * s.area;
+  const double u = f.vx[pd], w = f.vy[pd];
+  const double du = vgx_[pd] * mx + vgy_[pd] * my, dw = wgx_[pd] * mx + wgy_[pd] * my;
+  const double px = u * flux + crho_[cd] * du;
+  const double py = w * flux + crho_[cd] * dw;
+  const double ke = 0.5 * (u * u + w * w) * flux + crho_[cd] * (u * du + w * dw);
+  if (direct) {
+    corner_dm_[c] += flux, corner_dm_[side.c1] -= flux;
+    dm_point_[pa] += flux, dpx_[pa] += px, dpy_[pa] += py, dke_[pa] += ke, point_touched_[pa] = 1;
+    dm_point_[pb] -= flux, dpx_[pb] -= px, dpy_[pb] -= py, dke_[pb] -= ke, point_touched_[pb] = 1;
+  } else {
+    flux_mass_[slot] = flux, flux_active_[slot] = 1;
+    seg_px_[c] = px, seg_py_[c] = py, seg_ke_[c] = ke;
+  }
+}
+
+// The donor remainder bound (remainder_keep) on the direct sums: the half sides' fluxes are
+// in their slots too; where the bound acts (a zone's new value outside its bounds, tested
+// on the same sums as gather_fluxes tests), the factors of all such zones are taken first,
+// then their outflows changed, and the zones next to a changed flux summed again from the
+// slots in the same order: bitwise what gather_fluxes gives.
+void Remapper::direct_remainder_bound(const RemapFields& f) {
+  const Mesh& m = mesh_;
+  const Index nz = m.num_zones();
+  const std::size_t nf = f.specific.size(), nc2 = 2 * static_cast<std::size_t>(m.num_corners());
+  bound_zones_.clear();
+  for (Index z = 0; z < nz; ++z) {
+    if (!zone_hit_[z]) continue;  // no flux: its value stays (a rounding at most)
+    const double m0 = f.zone_mass[z], m1 = m0 + zone_dm_[z];
+    if (!(m1 > 0)) continue;
+    bool acts = false;
+    for (std::size_t i = 0; i < nf && !acts; ++i) {
+      const double q = f.specific[i][z];
+      if (!std::isfinite(q)) continue;
+      const std::size_t id = i * nz + z;
+      acts = beyond_bounds((m0 * q + zone_dq_[id]) / m1, qmin_[id], qmax_[id], m0, m1);
+    }
+    if (!acts) continue;
+    bound_zones_.push_back(z);  // capacity nz: no allocation
+    for (std::size_t i = 0; i < nf; ++i) keep_[i * nz + z] = remainder_keep(f, z, i, m0, m1);
+  }
+  for (const Index z : bound_zones_) {
+    bool acted = false;
+    for (std::size_t i = 0; i < nf; ++i)
+      if (keep_[i * nz + z] != 1.0) {
+        acted = true;
+        keep_outflows(f, z, i, keep_[i * nz + z]);
+        // The zone and the neighbours across its half sides: their sums again.
+        zone_resum_[z] = 1;
+        for (Index e = zone_list_begin_[z]; e < zone_list_begin_[z + 1]; ++e) {
+          const Index c = zone_list_[e] >> 2;  // slot 2c + h
+          zone_resum_[m.corner_zone[c]] = zone_resum_[side_zone_[c]] = 1;
+        }
+      }
+    bounded_ += acted;
+  }
+  for (Index z = 0; z < nz; ++z) {
+    if (!zone_resum_[z]) continue;
+    zone_resum_[z] = 0;
+    const Index* lb = zone_list_.data() + zone_list_begin_[z];
+    const Index* le = zone_list_.data() + zone_list_begin_[z + 1];
+    for (std::size_t i = 0; i < nf; ++i) zone_dq_[i * nz + z] = signed_sum(lb, le, flux_q_.data() + i * nc2);
+  }
+}
+
+// The direct sums are there: the new zone and corner values.
+void Remapper::direct_zone_corner_values(RemapFields& f) {
+  const Mesh& m = mesh_;
+  const Index nz = m.num_zones(), nc = m.num_corners();
+  const std::size_t nf = f.specific.size();
+  Index failed_zone = std::numeric_limits<Index>::max();
+  for (Index z = 0; z < nz; ++z) {
+    if (!zone_hit_[z]) continue;
+    const double m0 = f.zone_mass[z], m1 = m0 + zone_dm_[z];
+    if (!(m1 > 0)) {
+      failed_zone = std::min(failed_zone, z);
+      continue;
+    }
+    for (std::size_t i = 0; i < nf; ++i) {
+      double& q = f.specific[i][z];
+      if (std::isfinite(q)) q = (m0 * q + zone_dq_[i * nz + z]) / m1;
+    }
+    f.zone_mass[z] = m1;
+  }
+  if (failed_zone != std::numeric_limits<Index>::max())
+    fail_mass(m, "zone", failed_zone, f.zone_mass[failed_zone] + zone_dm_[failed_zone]);
+  for (Index c = 0; c < nc; ++c)
+    if (corner_dm_[c] != 0) f.corner_mass[c] += corner_dm_[c];
+}
+
+// Repair: a zone whose corner kept less than a hundredth of its share (subcell densities
+// can drift apart where the mesh and the flow shear; a swept region then takes more than
+// the corner holds) gets its corner masses reset to its new mass shared by new corner area.
+// The zone mass stays; the points' masses change by the difference, their momentum does
+// not, and the kinetic energy this changes is part of the fix-up.
+template <bool Rz>
+void Remapper::repair_corner_masses(const double* xn, const double* yn, RemapFields& f) {
+  const Mesh& m = mesh_;
+  const Index nz = m.num_zones();
   for (Index z = 0; z < nz; ++z) {
     const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
     bool bad = false;
@@ -946,6 +1051,14 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
     }
     ++repaired_;
   }
+}
+
+// The points' new mass, velocity (momentum over mass) and carried kinetic energy (the old
+// 1/2 M v^2 plus the fluxes, for the kinetic-energy fix-up); rz axis points take the
+// reconstruction at their new position.
+template <bool Rz>
+void Remapper::point_momentum(const double* xo, const double* yo, const double* xn, const double* yn, RemapFields& f) {
+  const Index np = mesh_.num_points();
   Index failed_point = std::numeric_limits<Index>::max();
 #pragma omp parallel for schedule(static) reduction(min : failed_point) if (np > kParallelMin)
   for (Index p = 0; p < np; ++p) {
@@ -973,7 +1086,34 @@ void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, 
     if (f.point_kinetic) f.point_kinetic[p] = ke;
   }
   if (failed_point != std::numeric_limits<Index>::max())
-    fail_mass(m, "point", failed_point, f.point_mass[failed_point] + dm_point_[failed_point]);
+    fail_mass(mesh_, "point", failed_point, f.point_mass[failed_point] + dm_point_[failed_point]);
+}
+
+// The stages in order: where anything moves, the old geometry and the reconstruction, the
+// face fluxes, the new zone and corner values (directly or gathered from the slots), the
+// corner-mass repair, and the points' momentum.
+template <bool Rz>
+void Remapper::remap_impl(const double* xo, const double* yo, const double* xn, const double* yn, RemapFields& f,
+                          bool limiter) {
+  const Index nz = mesh_.num_zones();
+  const std::size_t nf = f.specific.size();
+  mark_active<Rz>(xo, yo, xn, yn);
+  old_geometry<Rz>(xo, yo, f);
+  least_squares_matrices(xo, yo);
+  reconstruction_gradients(f, limiter);
+  corner_gradients(xo, yo);
+  const bool bound = limiter && remainder_bound_ && nf > 0;  // the donor remainder bound needs the half sides' slots
+  if (bound) keep_.resize(nf * static_cast<std::size_t>(nz), 1.0);
+  const bool direct = nz <= kParallelMin || omp_get_max_threads() == 1;
+  face_fluxes<Rz>(xo, yo, xn, yn, f, limiter, direct, bound);
+  if (direct) {
+    if (bound) direct_remainder_bound(f);
+    direct_zone_corner_values(f);
+  } else {
+    gather_fluxes(f, limiter);
+  }
+  repair_corner_masses<Rz>(xn, yn, f);
+  point_momentum<Rz>(xo, yo, xn, yn, f);
 }
 
 }  // namespace stagger

@@ -66,7 +66,8 @@ class Remapper {
   void allocate_workspace();
   void order_flux_sums();
 
-  // The remap's stages, in the order remap_impl runs them.
+  // The remap's stages, in the order remap_impl runs them: the reconstruction
+  // (remap_reconstruction.cpp), the face fluxes (remap_fluxes.cpp), the new values (remap_update.cpp).
   template <bool Rz>
   void remap_impl(const double* xo, const double* yo, const double* xn, const double* yn, RemapFields& f, bool limiter);
   template <bool Rz>

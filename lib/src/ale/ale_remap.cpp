@@ -40,6 +40,10 @@ class AleRemap final : public Remap {
   void remap_substeps(int steps);
   void remap_once(const double* xo, const double* yo, const double* xn, const double* yn);
   void fixup();
+  double kinetic_losses();
+  void pay_deficits_locally();
+  void share_to_zones();
+  void bound_zone_shares();
 
   Simulation::Impl& s_;
   std::vector<int> zone_material_;
@@ -197,27 +201,45 @@ void AleRemap::remap_once(const double* xo, const double* yo, const double* xn, 
 // constrained) momentum, goes to the internal energy of the zones around the point in
 // proportion to their corner masses. Total energy is then conserved to round-off.
 void AleRemap::fixup() {
-  const Mesh& m = s_.mesh();
-  const Index np = m.num_points(), nz = m.num_zones();
   // The constraints (walls, pistons, periodic groups) act on the remapped velocities; the
   // kinetic energy they remove is part of the fix-up.
   apply_constraints(s_, s_.vx, s_.vy, s_.t);
   std::fill(dE_.begin(), dE_.end(), 0.0);
-  // The visit tags 2 p and 2 p + 1 repeat from one fix-up to the next: a tag left by the last
-  // call (a point whose neighbours had nothing to give) would skip a neighbour in this one.
-  std::fill(stamp_.begin(), stamp_.end(), -1);
+  const double moved = kinetic_losses();
+  pay_deficits_locally();
+  share_to_zones();
+  bound_zone_shares();
+  const Index nz = s_.mesh().num_zones();
+  for (Index z = 0; z < nz; ++z)
+    if (dE_[z] != 0) s_.e[z] = (s_.zone_mass[z] * s_.e[z] + dE_[z]) / s_.zone_mass[z];
+  s_.ale_fixup += moved;
+}
+
+// Per point, the kinetic energy the remap carried minus that of its new momentum (dK); returns
+// their sum, the kinetic energy moved to the internal energy.
+double AleRemap::kinetic_losses() {
+  const Index np = s_.mesh().num_points();
   double moved = 0;
   for (Index p = 0; p < np; ++p) {
     const double u = s_.vx[p], w = s_.vy[p];
     dk_[p] = kinetic_[p] - 0.5 * s_.point_mass[p] * (u * u + w * w);
     moved += dk_[p];
   }
-  // A second-order reconstruction can make dK_p negative at one point and positive at its
-  // neighbours (the total is a loss of kinetic energy, dK >= 0, for a first-order remap). A
-  // point's deficit is first paid by the positive dK of the points sharing a zone with it, in
-  // proportion to them, so that the fix-up stays local and no zone is cooled by a mere
-  // oscillation of the reconstruction. Points in order: the result is the same on any thread
-  // count.
+  return moved;
+}
+
+// A second-order reconstruction can make dK_p negative at one point and positive at its
+// neighbours (the total is a loss of kinetic energy, dK >= 0, for a first-order remap). A
+// point's deficit is first paid by the positive dK of the points sharing a zone with it, in
+// proportion to them, so that the fix-up stays local and no zone is cooled by a mere
+// oscillation of the reconstruction. Points in order: the result is the same on any thread
+// count.
+void AleRemap::pay_deficits_locally() {
+  const Mesh& m = s_.mesh();
+  const Index np = m.num_points();
+  // The visit tags 2 p and 2 p + 1 repeat from one fix-up to the next: a tag left by the last
+  // call (a point whose neighbours had nothing to give) would skip a neighbour in this one.
+  std::fill(stamp_.begin(), stamp_.end(), -1);
   const auto around = [&](Index p, std::int64_t tag, auto&& visit) {
     for (Index k = m.point_corner_begin[p]; k < m.point_corner_begin[p + 1]; ++k) {
       const Index z = m.corner_zone[m.point_corners[k]];
@@ -244,6 +266,12 @@ void AleRemap::fixup() {
     });
     dk_[p] += got;
   }
+}
+
+// Each point's dK to the zones around it, in proportion to their corner masses (dE per zone).
+void AleRemap::share_to_zones() {
+  const Mesh& m = s_.mesh();
+  const Index np = m.num_points();
   for (Index p = 0; p < np; ++p) {
     const double dk = dk_[p];
     if (dk == 0) continue;
@@ -255,11 +283,14 @@ void AleRemap::fixup() {
       dE_[m.corner_zone[c]] += dk * (s_.ale_corner_mass[c] / mass);
     }
   }
-  // A zone may take a negative share only down to half of its internal energy above the
-  // floor (0 for an ideal gas; for other equations of state 0 or their min_energy if higher:
-  // the fix-up must not cool a cold solid into tension); the rest of the deficit is taken
-  // from all zones in proportion to their energy above the floor. Nothing is clipped: the
-  // total moved is exactly what the kinetic energy lost.
+}
+
+// A zone may take a negative share only down to half of its internal energy above the
+// floor (0 for an ideal gas; for other equations of state 0 or their min_energy if higher:
+// the fix-up must not cool a cold solid into tension); the rest of the deficit is taken
+// from all zones in proportion to their energy above the floor. Nothing is clipped: the
+// total moved is exactly what the kinetic energy lost. Throws if the zones cannot pay it.
+void AleRemap::bound_zone_shares() {
   const auto energy_floor = [&](const ZoneRange& r) {
     const Material& mat = s_.problem.materials[r.material];
     return std::holds_alternative<IdealGas>(mat.eos) ? 0.0 : std::max(mat.min_energy, 0.0);
@@ -276,25 +307,21 @@ void AleRemap::fixup() {
       capacity += std::max(0.0, room + dE_[z]);
     }
   }
-  if (deficit < 0) {
-    if (!(capacity > -deficit)) {
-      std::ostringstream msg;
-      msg << "cycle " << s_.cycle << ", t = " << s_.t << ": the ALE remap's kinetic-energy fix-up must take "
-          << -deficit << " from an internal energy of only " << capacity
-          << " above the equations of state's floors (docs/ale.md): remap more often or relax less";
-      throw Error(msg.str());
-    }
-    for (const ZoneRange& r : s_.ranges) {
-      const double floor = energy_floor(r);
-      for (Index z = r.begin; z < r.end; ++z) {
-        const double room = std::max(0.0, s_.zone_mass[z] * std::max(s_.e[z] - floor, 0.0) + dE_[z]);
-        dE_[z] += deficit * (room / capacity);
-      }
+  if (!(deficit < 0)) return;
+  if (!(capacity > -deficit)) {
+    std::ostringstream msg;
+    msg << "cycle " << s_.cycle << ", t = " << s_.t << ": the ALE remap's kinetic-energy fix-up must take " << -deficit
+        << " from an internal energy of only " << capacity
+        << " above the equations of state's floors (docs/ale.md): remap more often or relax less";
+    throw Error(msg.str());
+  }
+  for (const ZoneRange& r : s_.ranges) {
+    const double floor = energy_floor(r);
+    for (Index z = r.begin; z < r.end; ++z) {
+      const double room = std::max(0.0, s_.zone_mass[z] * std::max(s_.e[z] - floor, 0.0) + dE_[z]);
+      dE_[z] += deficit * (room / capacity);
     }
   }
-  for (Index z = 0; z < nz; ++z)
-    if (dE_[z] != 0) s_.e[z] = (s_.zone_mass[z] * s_.e[z] + dE_[z]) / s_.zone_mass[z];
-  s_.ale_fixup += moved;
 }
 
 bool AleRemap::remap(RemapState&) {

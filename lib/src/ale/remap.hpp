@@ -58,14 +58,52 @@ class Remapper {
   long bounded_zones() const { return bounded_; }
 
  private:
+  struct ZoneSide;  // one side of a zone in the flux sweep (remap.cpp)
+
+  // Set-up (the constructor's stages).
+  void find_sides(std::span<const int> zone_material);
+  void find_neighbours(std::span<const int> zone_material);
+  void allocate_workspace();
+  void order_flux_sums();
+
+  // The remap's stages, in the order remap_impl runs them: the reconstruction
+  // (remap_reconstruction.cpp), the face fluxes (remap_fluxes.cpp), the new values (remap_update.cpp).
   template <bool Rz>
   void remap_impl(const double* xo, const double* yo, const double* xn, const double* yn, RemapFields& f, bool limiter);
-  void gather_fluxes(RemapFields& f, bool limiter);
-  double remainder_keep(const RemapFields& f, Index z, std::size_t i, double m0, double m1) const;
-  void keep_outflows(const RemapFields& f, Index z, std::size_t i, double t);
+  template <bool Rz>
+  void mark_active(const double* xo, const double* yo, const double* xn, const double* yn);
+  template <bool Rz>
+  void old_geometry(const double* xo, const double* yo, const RemapFields& f);
+  template <bool Rz>
+  void old_corners(Index z, const double* xo, const double* yo, const RemapFields& f);
+  void least_squares_matrices(const double* xo, const double* yo);
+  void reconstruction_gradients(const RemapFields& f, bool limiter);
   void zone_gradients(const double* q, bool limiter, double* gx, double* gy, double* lo, double* hi);
   void point_gradients(const double* qa, const double* qb, bool limiter, double* gax, double* gay, double* gbx,
                        double* gby);
+  void corner_gradients(const double* xo, const double* yo);
+  template <bool Rz>
+  void face_fluxes(const double* xo, const double* yo, const double* xn, const double* yn, const RemapFields& f,
+                   bool limiter, bool direct, bool bound);
+  void clear_zone_slots(Index z, std::size_t nf, bool direct);
+  template <bool Rz>
+  void half_side_fluxes(const ZoneSide& side, const double* xo, const double* yo, const double* xn, const double* yn,
+                        const RemapFields& f, bool limiter, bool direct, bool bound);
+  template <bool Rz>
+  void centre_segment_flux(const ZoneSide& side, double gnx, double gny, const double* xo, const double* yo,
+                           const RemapFields& f, bool direct);
+  double remainder_keep(const RemapFields& f, Index z, std::size_t i, double m0, double m1) const;
+  void keep_outflows(const RemapFields& f, Index z, std::size_t i, double t);
+  void direct_remainder_bound(const RemapFields& f);
+  void direct_zone_corner_values(RemapFields& f);
+  void gather_fluxes(RemapFields& f, bool limiter);
+  void slot_remainder_bound(const RemapFields& f);
+  void gather_zone_values(RemapFields& f);
+  void gather_corner_point_sums(RemapFields& f);
+  template <bool Rz>
+  void repair_corner_masses(const double* xn, const double* yn, RemapFields& f);
+  template <bool Rz>
+  void point_momentum(const double* xo, const double* yo, const double* xn, const double* yn, RemapFields& f);
 
   const Mesh& mesh_;
   bool rz_ = false;

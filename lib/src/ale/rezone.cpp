@@ -7,20 +7,15 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <numbers>
 #include <string>
 
+#include "ale/norm2.hpp"
 #include "hydro/kernels/zone_validity.hpp"
 #include "stagger/error.hpp"
 
 namespace stagger {
 namespace {
-
-// |(x, y)| without std::hypot's overflow care (slow in glibc; lengths here are mesh-sized).
-[[gnu::always_inline]] inline double norm2(double x, double y) {
-  return std::sqrt(x * x + y * y);
-}
 
 // Per-corner constants of the functional F = N / D (docs/ale.md, "Rezone"):
 // with A = [u v] the corner's edge matrix (u to the next vertex, v to the previous one) and
@@ -248,293 +243,13 @@ void check_size(std::span<const double> s, Index n, const char* name, const Mesh
                 mesh.source + " has " + std::to_string(n) + " points");
 }
 
-// The Winslow stencil of one point (Knupp 1999): its zones in counter-clockwise order, each
-// given an equal sector of the logical plane (2 pi / k around an interior point, pi / k at a
-// boundary point); a zone's two edge neighbours sit on the sector's sides at unit distance,
-// its other vertices where a regular polygon with that corner puts them (u + v for a quad).
-// Returns false if the zones do not form one fan (then the point gets no stencil).
-bool winslow_fan(const Mesh& mesh, Index p, std::vector<Index>& points, std::vector<double>& xi,
-                 std::vector<double>& eta, std::vector<int>& key) {
-  struct Fan {
-    Index corner, u, v;
-    int m;
-  };
-  Fan fan[64];
-  const Index cb = mesh.point_corner_begin[p], ce = mesh.point_corner_begin[p + 1];
-  const int k = static_cast<int>(ce - cb);
-  if (k == 0 || k > 64) return false;
-  for (int i = 0; i < k; ++i) {
-    const Index c = mesh.point_corners[cb + i], z = mesh.corner_zone[c];
-    const Index b = mesh.zone_corner_begin[z], e = mesh.zone_corner_begin[z + 1];
-    fan[i] = {c, mesh.corner_point[c + 1 == e ? b : c + 1], mesh.corner_point[c == b ? e - 1 : c - 1],
-              static_cast<int>(e - b)};
-    if (e - b > kMaxZoneVertices) return false;
-  }
-  // The first zone of an open fan is the one whose u no other zone has as v.
-  int start = 0;
-  bool closed = true;
-  for (int i = 0; i < k && closed; ++i) {
-    bool found = false;
-    for (int j = 0; j < k; ++j) found = found || fan[j].v == fan[i].u;
-    if (!found) {
-      start = i;
-      closed = false;
-    }
-  }
-  int order[64];
-  order[0] = start;
-  for (int t = 1; t < k; ++t) {
-    order[t] = -1;
-    for (int j = 0; j < k; ++j)
-      if (fan[j].u == fan[order[t - 1]].v) order[t] = j;
-    if (order[t] < 0) return false;
-  }
-  if (closed && fan[order[k - 1]].v != fan[order[0]].u) return false;
-  const double phi = (closed ? 2 : 1) * std::numbers::pi / k;
-  points.clear();
-  xi.clear();
-  eta.clear();
-  key.assign(1, closed ? 1 : 0);
-  // Logical offsets that are integers up to rounding (the quad fans: cos(pi/2)) are made
-  // exact, so that the weights reproduce a uniform mesh to the last bit where they can.
-  const auto snap = [](double v) { return std::abs(v - std::round(v)) < 1e-12 ? std::round(v) : v; };
-  const auto add = [&](Index q, double a, double b) {
-    a = snap(a);
-    b = snap(b);
-    points.push_back(q);
-    xi.push_back(a);
-    eta.push_back(b);
-  };
-  for (int t = 0; t < k; ++t) {
-    const Fan& f = fan[order[t]];
-    key.push_back(f.m);
-    const double ux = std::cos(t * phi), uy = std::sin(t * phi);
-    const double vx = std::cos((t + 1) * phi), vy = std::sin((t + 1) * phi);
-    add(f.u, ux, uy);
-    const Index z = mesh.corner_zone[f.corner], b = mesh.zone_corner_begin[z];
-    if (f.m == 4) {
-      add(mesh.corner_point[b + (f.corner - b + 2) % 4], ux + vx, uy + vy);
-    } else if (f.m > 4) {
-      // Regular m-gon with vertex 0 at the origin, vertex 1 at (1, 0), counter-clockwise;
-      // the linear map taking its corner edges to (u, v) places the other vertices.
-      const double ext = 2 * std::numbers::pi / f.m, alpha = std::numbers::pi - ext;
-      const double ca = std::cos(alpha), sa = std::sin(alpha);
-      double rx = 1, ry = 0;
-      for (int j = 2; j <= f.m - 2; ++j) {
-        rx += std::cos((j - 1) * ext);
-        ry += std::sin((j - 1) * ext);
-        // (rx, ry) = a e1 + c (ca, sa)  ->  a u + c v.
-        const double c = ry / sa, a = rx - c * ca;
-        add(mesh.corner_point[b + (f.corner - b + j) % f.m], a * ux + c * vx, a * uy + c * vy);
-      }
-    }
-    if (!closed && t == k - 1) add(f.v, vx, vy);
-  }
-  return true;
-}
-
-// Least-squares derivative weights of a logical layout: x_i - x_0 ~ a x_xi + b x_eta +
-// a^2/2 x_xixi + a b x_xieta + b^2/2 x_etaeta. A small penalty on the second derivatives
-// makes under-determined fans (few neighbours) solvable and leaves linear maps exact (their
-// second derivatives are zero, so the penalty costs nothing there).
-// Returns false (no weights appended) if the first derivatives are not determined: a fan whose
-// logical neighbours lie on one line (a point in the middle of a straight side of its only zone).
-bool winslow_weights(const std::vector<double>& xi, const std::vector<double>& eta, std::vector<double>& out) {
-  const int n = static_cast<int>(xi.size());
-  Eigen::MatrixXd a(n, 5);
-  for (int i = 0; i < n; ++i) a.row(i) << xi[i], eta[i], 0.5 * xi[i] * xi[i], xi[i] * eta[i], 0.5 * eta[i] * eta[i];
-  Eigen::Matrix<double, 5, 5> m = a.transpose() * a;
-  for (int k = 2; k < 5; ++k) m(k, k) += 1e-4;
-  const Eigen::LDLT<Eigen::Matrix<double, 5, 5>> ldlt(m);
-  const auto d = ldlt.vectorD();
-  if (ldlt.info() != Eigen::Success || !(d.minCoeff() > 1e-10 * d.maxCoeff())) return false;
-  const Eigen::MatrixXd pinv = ldlt.solve(a.transpose());  // 5 x n
-  if (!pinv.allFinite()) return false;
-  // Stored per neighbour as (xixi, xieta, etaeta, xi, eta), then the row sums.
-  const int row[5] = {2, 3, 4, 0, 1};
-  double sum[5] = {0, 0, 0, 0, 0};
-  for (int i = 0; i < n; ++i)
-    for (int k = 0; k < 5; ++k) {
-      out.push_back(pinv(row[k], i));
-      sum[k] += pinv(row[k], i);
-    }
-  for (int k = 0; k < 5; ++k) out.push_back(sum[k]);
-  return true;
-}
-
-}  // namespace
-
-RezoneConstraints make_rezone_constraints(const Mesh& mesh, std::span<const BoundaryCondition> boundaries,
-                                          std::span<const Index> zone_material, WinslowLayout layout) {
-  const Index np = mesh.num_points(), nz = mesh.num_zones();
-  if (!zone_material.empty() && static_cast<Index>(zone_material.size()) != nz)
-    throw Error("rezone constraints: zone_material has " + std::to_string(zone_material.size()) +
-                " entries, the mesh " + mesh.source + " has " + std::to_string(nz) + " zones");
-  const auto material = [&](Index z) { return zone_material.empty() ? mesh.zone_region[z] : zone_material[z]; };
-
-  RezoneConstraints rc;
-  rc.kind.assign(np, RezonePointKind::interior);
-  rc.boundary_neighbours.assign(np, {-1, -1});
-  std::vector<std::uint8_t> fixed(np, 0);
-
-  // Boundary edges: sides that no other zone has (in the opposite direction).
-  std::vector<std::uint64_t> keys;
-  keys.reserve(mesh.num_corners());
-  for (Index z = 0; z < nz; ++z) {
-    const Index b = mesh.zone_corner_begin[z], e = mesh.zone_corner_begin[z + 1];
-    if (e - b > kMaxZoneVertices) {
-      for (Index c = b; c < e; ++c) fixed[mesh.corner_point[c]] = 1;
-    }
-    for (Index c = b; c < e; ++c) {
-      const Index p = mesh.corner_point[c], q = mesh.corner_point[c + 1 == e ? b : c + 1];
-      keys.push_back((std::uint64_t(std::min(p, q)) << 32) | std::uint64_t(std::max(p, q)));
-    }
-  }
-  std::sort(keys.begin(), keys.end());
-  std::vector<int> boundary_edges(np, 0);
-  for (std::size_t i = 0; i < keys.size();) {
-    std::size_t j = i;
-    while (j < keys.size() && keys[j] == keys[i]) ++j;
-    if (j - i == 1) {
-      const Index p = Index(keys[i] >> 32), q = Index(keys[i] & 0xffffffffu);
-      for (const auto& [a, o] : {std::pair{p, q}, std::pair{q, p}}) {
-        const int k = boundary_edges[a]++;
-        if (k < 2) rc.boundary_neighbours[a][k] = o;
-      }
-    }
-    i = j;
-  }
-
-  // Tags: points on two or more tags, and points of periodic tags, stay.
-  std::vector<std::uint8_t> tag_count(np, 0);
-  for (const BoundaryTag& tag : mesh.tags) {
-    bool periodic = false;
-    for (const BoundaryCondition& bc : boundaries)
-      if (bc.tag == tag.name && bc.kind == BoundaryKind::periodic) periodic = true;
-    for (const BoundaryCondition& bc : boundaries)
-      if (bc.partner == tag.name && bc.kind == BoundaryKind::periodic) periodic = true;
-    for (const Index p : tag.points) {
-      if (tag_count[p] < 255) ++tag_count[p];
-      if (periodic) fixed[p] = 1;
-    }
-  }
-
-  for (Index p = 0; p < np; ++p) {
-    // Material interface: the point's zones do not all share one material.
-    const Index cb = mesh.point_corner_begin[p], ce = mesh.point_corner_begin[p + 1];
-    for (Index i = cb; i < ce; ++i)
-      if (material(mesh.corner_zone[mesh.point_corners[i]]) != material(mesh.corner_zone[mesh.point_corners[cb]]))
-        fixed[p] = 1;
-    if (ce == cb) fixed[p] = 1;
-    if (tag_count[p] >= 2) fixed[p] = 1;
-    if (boundary_edges[p] == 0) {
-      // A tag on an interior curve: keep its points where they are.
-      if (tag_count[p] > 0) fixed[p] = 1;
-    } else if (boundary_edges[p] != 2) {
-      fixed[p] = 1;  // a pinch point of the boundary
-    }
-    if (fixed[p]) {
-      rc.kind[p] = RezonePointKind::fixed;
-      rc.boundary_neighbours[p] = {-1, -1};
-      ++rc.num_fixed;
-    } else if (boundary_edges[p] == 2) {
-      rc.kind[p] = RezonePointKind::slide;
-      ++rc.num_slide;
-    } else {
-      rc.boundary_neighbours[p] = {-1, -1};
-      ++rc.num_interior;
-    }
-  }
-
-  // Winslow stencils of the points that may move; fans with the same zone sizes share weights.
-  rc.stencil_id.assign(np, -1);
-  rc.stencil_begin.assign(1, 0);
-  std::map<std::vector<int>, Index> known;
-  std::map<std::vector<double>, Index> known_reference;
-  std::vector<Index> fan_points;
-  std::vector<double> xi, eta, offsets;
-  std::vector<int> key;
-  // known: layout -> weight set, or -1 for a fan without usable weights.
-  const auto weights_of = [&](auto& table, const auto& k) {
-    auto it = table.find(k);
-    if (it == table.end()) {
-      const bool ok = winslow_weights(xi, eta, rc.stencil_weights);
-      const Index id = ok ? static_cast<Index>(rc.weights_begin.size()) - 1 : -1;
-      if (ok) rc.weights_begin.push_back(static_cast<Index>(rc.stencil_weights.size()));
-      it = table.emplace(k, id).first;
-    }
-    return it->second;
-  };
-  for (Index p = 0; p < np; ++p) {
-    if (rc.kind[p] != RezonePointKind::fixed && winslow_fan(mesh, p, fan_points, xi, eta, key)) {
-      if (layout == WinslowLayout::regular) {
-        rc.stencil_id[p] = weights_of(known, key);  // fans with the same zone sizes share weights
-      } else {
-        // The initial offsets in units of the mean initial edge (the edge neighbours are the
-        // regular layout's points at unit distance). Offsets that are integers to rounding are
-        // made exact, so that the points of a uniform mesh share one weight set.
-        double length = 0;
-        int edges = 0;
-        for (std::size_t i = 0; i < fan_points.size(); ++i)
-          if (std::abs(xi[i] * xi[i] + eta[i] * eta[i] - 1) < 1e-9) {
-            length += norm2(mesh.x[fan_points[i]] - mesh.x[p], mesh.y[fan_points[i]] - mesh.y[p]);
-            ++edges;
-          }
-        length /= std::max(edges, 1);
-        const auto snap = [](double v) { return std::abs(v - std::round(v)) < 1e-9 ? std::round(v) : v; };
-        offsets.assign(1, key[0]);
-        for (std::size_t i = 0; i < fan_points.size(); ++i) {
-          xi[i] = snap((mesh.x[fan_points[i]] - mesh.x[p]) / length);
-          eta[i] = snap((mesh.y[fan_points[i]] - mesh.y[p]) / length);
-          offsets.push_back(xi[i]);
-          offsets.push_back(eta[i]);
-        }
-        rc.stencil_id[p] = length > 0 ? weights_of(known_reference, offsets) : -1;
-      }
-      if (rc.stencil_id[p] >= 0)
-        rc.stencil_points.insert(rc.stencil_points.end(), fan_points.begin(), fan_points.end());
-    }
-    rc.stencil_begin.push_back(static_cast<Index>(rc.stencil_points.size()));
-  }
-
-  // Greedy colouring of the points that may move: no two points of one colour share a zone.
-  std::vector<int> colour(np, -1);
-  std::vector<Index> seen;  // seen[c] == p: colour c is taken by a zone neighbour of p
-  int colours = 0;
-  for (Index p = 0; p < np; ++p) {
-    if (rc.kind[p] == RezonePointKind::fixed) continue;
-    for (Index i = mesh.point_corner_begin[p]; i < mesh.point_corner_begin[p + 1]; ++i) {
-      const Index z = mesh.corner_zone[mesh.point_corners[i]];
-      for (Index c = mesh.zone_corner_begin[z]; c < mesh.zone_corner_begin[z + 1]; ++c) {
-        const int k = colour[mesh.corner_point[c]];
-        if (k >= 0) seen[k] = p;
-      }
-    }
-    int k = 0;
-    while (k < colours && seen[k] == p) ++k;
-    if (k == colours) {
-      ++colours;
-      seen.push_back(-1);
-    }
-    colour[p] = k;
-  }
-  rc.colour_begin.assign(colours + 1, 0);
-  for (Index p = 0; p < np; ++p)
-    if (colour[p] >= 0) ++rc.colour_begin[colour[p] + 1];
-  for (int k = 0; k < colours; ++k) rc.colour_begin[k + 1] += rc.colour_begin[k];
-  rc.colour_points.resize(rc.colour_begin[colours]);
-  std::vector<Index> fill(rc.colour_begin.begin(), rc.colour_begin.end() - 1);
-  for (Index p = 0; p < np; ++p)
-    if (colour[p] >= 0) rc.colour_points[fill[colour[p]]++] = p;
-  return rc;
-}
-
-RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& rc, const RezoneOptions& options,
-                    std::span<const double> x_lag, std::span<const double> y_lag, std::span<const double> x_ref,
-                    std::span<const double> y_ref, std::span<double> x_new, std::span<double> y_new,
-                    RezoneWorkspace& ws) {
+// The inputs of rezone: options in range, arrays of the mesh's sizes, outputs that are not the
+// inputs, constraints built for this mesh.
+void check_rezone_inputs(const Mesh& mesh, const RezoneConstraints& rc, const RezoneOptions& options,
+                         std::span<const double> x_lag, std::span<const double> y_lag, std::span<const double> x_ref,
+                         std::span<const double> y_ref, std::span<double> x_new, std::span<double> y_new) {
   check_options(options);
-  const Index np = mesh.num_points(), nz = mesh.num_zones();
+  const Index np = mesh.num_points();
   check_size(x_lag, np, "x_lag", mesh);
   check_size(y_lag, np, "y_lag", mesh);
   check_size({x_new.data(), x_new.size()}, np, "x_new", mesh);
@@ -545,46 +260,43 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& rc, const RezoneO
   if (static_cast<Index>(rc.kind.size()) != np)
     throw Error("rezone: the constraints were built for " + std::to_string(rc.kind.size()) + " points, the mesh " +
                 mesh.source + " has " + std::to_string(np));
-  const bool use_reference = options.method == RezoneMethod::reference_jacobian;
-  if (use_reference) {
+  if (options.method == RezoneMethod::reference_jacobian) {
     check_size(x_ref, np, "x_ref", mesh);
     check_size(y_ref, np, "y_ref", mesh);
   }
+}
 
-  RezoneResult result;
-  std::copy(x_lag.begin(), x_lag.end(), x_new.begin());
-  std::copy(y_lag.begin(), y_lag.end(), y_new.begin());
-  if (options.relaxation == 0 || options.iterations == 0) return result;
-
-  const Index nc = mesh.num_corners();
-  ws.xs.assign(x_lag.begin(), x_lag.end());
-  ws.ys.assign(y_lag.begin(), y_lag.end());
-  ws.arc.assign(np, 0.0);
-  ws.move_limit.resize(np);
-  if (use_reference) {
-    // Corner targets (x_ref is constant, but recomputing keeps the call pure; O(corners)).
-    ws.target.resize(4 * static_cast<std::size_t>(nc));
-    for (Index z = 0; z < nz; ++z) {
-      const Index b = mesh.zone_corner_begin[z], e = mesh.zone_corner_begin[z + 1];
-      const int m = static_cast<int>(e - b);
-      for (Index c = b; c < e; ++c) {
-        const Index p0 = mesh.corner_point[c], p1 = mesh.corner_point[c + 1 == e ? b : c + 1],
-                    p2 = mesh.corner_point[c == b ? e - 1 : c - 1];
-        const CornerTarget t = reference_target(x_ref[p1] - x_ref[p0], y_ref[p1] - y_ref[p0], x_ref[p2] - x_ref[p0],
-                                                y_ref[p2] - y_ref[p0], m);
-        ws.target[4 * c] = t.k11;
-        ws.target[4 * c + 1] = t.k12;
-        ws.target[4 * c + 2] = t.k22;
-        ws.target[4 * c + 3] = t.det_m;
-      }
+// The reference-Jacobian functional's corner targets, 4 per corner (k11, k12, k22, det_m), from
+// the reference mesh (constant, but recomputing keeps the call pure; O(corners)).
+void reference_corner_targets(const Mesh& mesh, std::span<const double> x_ref, std::span<const double> y_ref,
+                              std::vector<double>& target) {
+  const Index nz = mesh.num_zones();
+  target.resize(4 * static_cast<std::size_t>(mesh.num_corners()));
+  for (Index z = 0; z < nz; ++z) {
+    const Index b = mesh.zone_corner_begin[z], e = mesh.zone_corner_begin[z + 1];
+    const int m = static_cast<int>(e - b);
+    for (Index c = b; c < e; ++c) {
+      const Index p0 = mesh.corner_point[c], p1 = mesh.corner_point[c + 1 == e ? b : c + 1],
+                  p2 = mesh.corner_point[c == b ? e - 1 : c - 1];
+      const CornerTarget t = reference_target(x_ref[p1] - x_ref[p0], y_ref[p1] - y_ref[p0], x_ref[p2] - x_ref[p0],
+                                              y_ref[p2] - y_ref[p0], m);
+      target[4 * c] = t.k11;
+      target[4 * c + 1] = t.k12;
+      target[4 * c + 2] = t.k22;
+      target[4 * c + 3] = t.det_m;
     }
   }
-  // Each point moves at most max_move times its shortest Lagrangian edge (a gather over the
-  // point's corners, so the loop is parallel). The bound is on the final, relaxed move: the
-  // smoothed move may be 1 / relaxation times longer (up to one edge). Capping the smoothed
-  // move instead leaves relaxation * max_move of an edge per remap, and where the flow closes
-  // an edge (a shock reflecting off a wall) the rezone then cannot reopen it as fast as the
-  // flow shuts it: the cap shrinks with the edge and the zone collapses (docs/ale.md).
+}
+
+// Each point moves at most max_move times its shortest Lagrangian edge (a gather over the
+// point's corners, so the loop is parallel). The bound is on the final, relaxed move: the
+// smoothed move may be 1 / relaxation times longer (up to one edge). Capping the smoothed
+// move instead leaves relaxation * max_move of an edge per remap, and where the flow closes
+// an edge (a shock reflecting off a wall) the rezone then cannot reopen it as fast as the
+// flow shuts it: the cap shrinks with the edge and the zone collapses (docs/ale.md).
+void move_limits(const Mesh& mesh, const RezoneConstraints& rc, const RezoneOptions& options,
+                 std::span<const double> x_lag, std::span<const double> y_lag, std::vector<double>& move_limit) {
+  const Index np = mesh.num_points();
   const double limit_factor = std::min(options.max_move / options.relaxation, 1.0);
 #pragma omp parallel for schedule(static) if (np > 20000)
   for (Index p = 0; p < np; ++p) {
@@ -607,150 +319,199 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& rc, const RezoneO
         shortest2 = std::min(shortest2, px * px + py * py);
       }
     }
-    ws.move_limit[p] = limit_factor * std::sqrt(shortest2);
+    move_limit[p] = limit_factor * std::sqrt(shortest2);
   }
+}
 
-  // Slide points this call: the boundary turns by at most corner_angle at the Lagrangian
-  // positions. Directions e_a, e_b toward the two boundary neighbours; lengths bound the slide.
+// A slide point's two boundary edges at the Lagrangian positions: the directions e_a, e_b
+// toward its boundary neighbours, and their lengths (which bound the slide).
+struct SlideEdges {
+  double ea[2] = {0, 0}, eb[2] = {0, 0}, la = 0, lb = 0;
+};
+
+// Slide point p's edges; false where it does not slide this call: an edge of zero length, or
+// a boundary that turns by more than the corner angle (cos_corner its cosine).
+bool slide_edges(const RezoneConstraints& rc, Index p, std::span<const double> x_lag, std::span<const double> y_lag,
+                 double cos_corner, SlideEdges& s) {
+  const auto [a, b] = rc.boundary_neighbours[p];
+  const double ax = x_lag[a] - x_lag[p], ay = y_lag[a] - y_lag[p];
+  const double bx = x_lag[b] - x_lag[p], by = y_lag[b] - y_lag[p];
+  s.la = norm2(ax, ay);
+  s.lb = norm2(bx, by);
+  if (!(s.la > 0 && s.lb > 0)) return false;
+  s.ea[0] = ax / s.la, s.ea[1] = ay / s.la, s.eb[0] = bx / s.lb, s.eb[1] = by / s.lb;
+  return -(s.ea[0] * s.eb[0] + s.ea[1] * s.eb[1]) >= cos_corner;
+}
+
+// The corners whose Jacobian depends on point p (in each zone, the corner at p and its two
+// neighbours), with their targets, and the smallest, largest |.| and sum of their D at
+// (xs, ys). False if there are more than kMaxLocal.
+bool local_corners(const Mesh& mesh, Index p, const std::vector<double>& target, const double* xs, const double* ys,
+                   LocalProblem& lp, double& dmin, double& dmax, double& dsum) {
+  lp.count = 0;
+  for (Index i = mesh.point_corner_begin[p]; i < mesh.point_corner_begin[p + 1]; ++i) {
+    const Index cp = mesh.point_corners[i], z = mesh.corner_zone[cp];
+    const Index b = mesh.zone_corner_begin[z], e = mesh.zone_corner_begin[z + 1];
+    const Index prev = cp == b ? e - 1 : cp - 1, next = cp + 1 == e ? b : cp + 1;
+    for (const Index c : {prev, cp, next}) {
+      if (lp.count == kMaxLocal) return false;
+      LocalCorner& l = lp.c[lp.count++];
+      l.p0 = mesh.corner_point[c];
+      l.p1 = mesh.corner_point[c + 1 == e ? b : c + 1];
+      l.p2 = mesh.corner_point[c == b ? e - 1 : c - 1];
+      l.target = {target[4 * c], target[4 * c + 1], target[4 * c + 2], target[4 * c + 3]};
+      l.alpha = c == cp ? -1.0 : (c == prev ? 1.0 : 0.0);
+      l.beta = c == cp ? -1.0 : (c == next ? 1.0 : 0.0);
+      const double d =
+          corner_value(l.target, xs[l.p1] - xs[l.p0], ys[l.p1] - ys[l.p0], xs[l.p2] - xs[l.p0], ys[l.p2] - ys[l.p0]).d;
+      dmin = std::min(dmin, d);
+      dmax = std::max(dmax, std::abs(d));
+      dsum += d;
+    }
+  }
+  return true;
+}
+
+// A candidate move of one point as a function of the step fraction t in (0, 1]: an interior
+// point from (px, py) along (sx, sy), a slide point along its old boundary edges from arc
+// length sigma0 to sigma1 (>= 0 toward b, < 0 toward a).
+struct PointStep {
+  RezonePointKind kind;
+  double x_lag, y_lag, px, py;
+  const SlideEdges* edges;
+  double sx = 0, sy = 0;  // interior: full step
+  double sigma0 = 0, sigma1 = 0;
+  void position(double t, double* qx, double* qy) const {
+    if (kind == RezonePointKind::interior) {
+      *qx = px + t * sx;
+      *qy = py + t * sy;
+    } else {
+      const double sg = sigma0 + t * (sigma1 - sigma0);
+      if (sg >= 0) {
+        *qx = x_lag + sg * edges->eb[0];
+        *qy = y_lag + sg * edges->eb[1];
+      } else {
+        *qx = x_lag - sg * edges->ea[0];
+        *qy = y_lag - sg * edges->ea[1];
+      }
+    }
+  }
+};
+
+// An interior point's Newton step on the local functional (gradient g, Hessian h), with the
+// Hessian shifted where it is not safely positive definite, kept within lim of the Lagrangian
+// position. False if the step is negligible (the point stays).
+bool interior_newton_step(const Eigen::Vector2d& g, const Eigen::Matrix2d& h, double lim, PointStep& st) {
+  Eigen::Matrix2d hs = h;
+  const double tr = h.trace();
+  const double disc = std::sqrt(0.25 * (h(0, 0) - h(1, 1)) * (h(0, 0) - h(1, 1)) + h(0, 1) * h(0, 1));
+  const double lmin = 0.5 * tr - disc, lmax = 0.5 * tr + disc;
+  if (!(lmin > 1e-8 * std::abs(lmax)))
+    hs += (std::abs(lmin) + 1e-3 * std::abs(lmax) + 1e-300) * Eigen::Matrix2d::Identity();
+  const Eigen::Vector2d step = hs.llt().solve(-g);
+  st.sx = step(0);
+  st.sy = step(1);
+  // Keep within the move limit around the Lagrangian position.
+  const double dx = st.px + st.sx - st.x_lag, dy = st.py + st.sy - st.y_lag;
+  const double dist = norm2(dx, dy);
+  if (dist > lim) {
+    st.sx = st.x_lag + dx * (lim / dist) - st.px;
+    st.sy = st.y_lag + dy * (lim / dist) - st.py;
+  }
+  return norm2(st.sx, st.sy) > 1e-10 * lim;
+}
+
+// A slide point's Newton step along the old boundary edge it would run along (sigma0 = its
+// current arc length), stopping at the kink and within the edges' and the move limit. False
+// if the step is negligible or points off the boundary (the point stays).
+bool slide_newton_step(const Eigen::Vector2d& g, const Eigen::Matrix2d& h, double lim, PointStep& st) {
+  const SlideEdges& e = *st.edges;
+  const double sigma0 = st.sigma0;
+  const Eigen::Vector2d db(e.eb[0], e.eb[1]), da(-e.ea[0], -e.ea[1]);
+  const bool toward_b = sigma0 > 0 || (sigma0 == 0 && g.dot(db) < 0);
+  const Eigen::Vector2d d = toward_b ? db : da;
+  const double gd = g.dot(d), hd = d.dot(h * d);
+  const double s = hd > 0 ? -gd / hd : -gd / (h.norm() + 1e-300);
+  if (sigma0 == 0 && (toward_b ? !(s > 0) : !(s < 0))) return false;
+  double sigma1 = sigma0 + s;
+  if ((sigma0 > 0 && sigma1 < 0) || (sigma0 < 0 && sigma1 > 0)) sigma1 = 0;  // stop at the kink
+  sigma1 = std::clamp(sigma1, -std::min(0.45 * e.la, lim), std::min(0.45 * e.lb, lim));
+  st.sigma1 = sigma1;
+  return std::abs(sigma1 - sigma0) > 1e-10 * lim;
+}
+
+// Backtracking: point p takes the first fraction of the step that lowers the local functional
+// below f0 and keeps every zone around p as valid as it was (else it stays).
+void backtrack(const Mesh& mesh, Index p, const LocalProblem& lp, const PointStep& st, double f0, double delta,
+               double w, double tau, double* xs, double* ys, double& arc) {
+  const Index cb = mesh.point_corner_begin[p], ce = mesh.point_corner_begin[p + 1];
+  for (double t = 1; t > 0.1; t *= 0.5) {
+    double qx, qy;
+    st.position(t, &qx, &qy);
+    if (!(local_value(lp, p, qx, qy, xs, ys, delta, w, tau) < f0)) continue;
+    bool ok = true;
+    for (Index i = cb; i < ce && ok; ++i) {
+      const Index z = mesh.corner_zone[mesh.point_corners[i]];
+      if (zone_crosses(zone_vertices(mesh, z, xs, ys, p, qx, qy)) && !zone_crosses(zone_vertices(mesh, z, xs, ys)))
+        ok = false;
+    }
+    if (!ok) continue;
+    xs[p] = qx;
+    ys[p] = qy;
+    if (st.kind == RezonePointKind::slide) arc = st.sigma0 + t * (st.sigma1 - st.sigma0);
+    break;
+  }
+}
+
+// One Gauss-Seidel update of point p by the reference-Jacobian functional (docs/ale.md,
+// "Reference-Jacobian smoothing"): a safeguarded Newton step on the functional of the corners
+// around p, then backtracking. lim: p's move limit; arc: a slide point's arc length.
+void reference_jacobian_point(const Mesh& mesh, Index p, RezonePointKind kind, const SlideEdges& edges,
+                              double size_weight, double lim, double x_lag, double y_lag,
+                              const std::vector<double>& target, double* xs, double* ys, double& arc) {
+  LocalProblem lp;
+  double dmin = std::numeric_limits<double>::infinity(), dmax = 0, dsum = 0;
+  if (!local_corners(mesh, p, target, xs, ys, lp, dmin, dmax, dsum) || !(dmax > 0)) return;
+  // Regularise only where a corner is not convex (then the plain functional has no barrier).
+  const double delta = dmin > 0 ? 0.0 : 1e-2 * dmax;
+  // Size target: the mean relative corner area around p, frozen for this update (a reference
+  // mesh, or any uniform scaling of it, has D = tau everywhere: still a fixed point).
+  const double tau = dsum / lp.count;
+  const double w = tau > 0 ? size_weight : 0.0;
+
+  Eigen::Vector2d g;
+  Eigen::Matrix2d h;
+  local_derivatives(lp, xs, ys, delta, w, tau, g, h);
+  PointStep st{.kind = kind, .x_lag = x_lag, .y_lag = y_lag, .px = xs[p], .py = ys[p], .edges = &edges};
+  st.sigma0 = st.sigma1 = arc;
+  const double f0 = local_value(lp, p, st.px, st.py, xs, ys, delta, w, tau);
+  if (kind == RezonePointKind::interior ? !interior_newton_step(g, h, lim, st) : !slide_newton_step(g, h, lim, st))
+    return;
+  backtrack(mesh, p, lp, st, f0, delta, w, tau, xs, ys, arc);
+}
+
+// The smoothing: `iterations` Gauss-Seidel sweeps over the free points, from the Lagrangian
+// positions to the smoothed ones in (ws.xs, ws.ys). Points of one colour share no zone
+// (make_rezone_constraints), so they are independent: a colour is one parallel loop, and the
+// result does not depend on the number of threads.
+void smoothing_sweeps(const Mesh& mesh, const RezoneConstraints& rc, const RezoneOptions& options,
+                      std::span<const double> x_lag, std::span<const double> y_lag, RezoneWorkspace& ws) {
+  const bool use_reference = options.method == RezoneMethod::reference_jacobian;
+  // Slide points this call: the boundary turns by at most corner_angle at the Lagrangian positions.
   const double cos_corner = std::cos(options.corner_angle_degrees * std::numbers::pi / 180);
-  const auto slide_geometry = [&](Index p, double* ea, double* eb, double* la, double* lb) {
-    const auto [a, b] = rc.boundary_neighbours[p];
-    const double ax = x_lag[a] - x_lag[p], ay = y_lag[a] - y_lag[p];
-    const double bx = x_lag[b] - x_lag[p], by = y_lag[b] - y_lag[p];
-    *la = norm2(ax, ay);
-    *lb = norm2(bx, by);
-    if (!(*la > 0 && *lb > 0)) return false;
-    ea[0] = ax / *la, ea[1] = ay / *la, eb[0] = bx / *lb, eb[1] = by / *lb;
-    return -(ea[0] * eb[0] + ea[1] * eb[1]) >= cos_corner;
-  };
-
   double* xs = ws.xs.data();
   double* ys = ws.ys.data();
-  // One point's update. Points of one colour share no zone (make_rezone_constraints), so
-  // they are independent: a colour is one parallel loop, and the result does not depend on
-  // the number of threads.
   const auto update = [&](Index p) {
     const RezonePointKind kind = rc.kind[p];
     if (kind == RezonePointKind::fixed) return;
-    double ea[2] = {0, 0}, eb[2] = {0, 0}, la = 0, lb = 0;
-    if (kind == RezonePointKind::slide && !slide_geometry(p, ea, eb, &la, &lb)) return;
-    if (!use_reference) {
-      winslow_point(rc, p, kind, ea, eb, la, lb, ws.move_limit[p], x_lag[p], y_lag[p], xs, ys, ws.arc[p]);
-      return;
-    }
-
-    // The corners around p: in each zone, the corner at p and its two neighbours.
-    LocalProblem lp;
-    lp.count = 0;
-    double dmin = std::numeric_limits<double>::infinity(), dmax = 0, dsum = 0;
-    const Index cb = mesh.point_corner_begin[p], ce = mesh.point_corner_begin[p + 1];
-    bool too_many = false;
-    for (Index i = cb; i < ce && !too_many; ++i) {
-      const Index cp = mesh.point_corners[i], z = mesh.corner_zone[cp];
-      const Index b = mesh.zone_corner_begin[z], e = mesh.zone_corner_begin[z + 1];
-      const Index prev = cp == b ? e - 1 : cp - 1, next = cp + 1 == e ? b : cp + 1;
-      for (const Index c : {prev, cp, next}) {
-        if (lp.count == kMaxLocal) {
-          too_many = true;
-          break;
-        }
-        LocalCorner& l = lp.c[lp.count++];
-        l.p0 = mesh.corner_point[c];
-        l.p1 = mesh.corner_point[c + 1 == e ? b : c + 1];
-        l.p2 = mesh.corner_point[c == b ? e - 1 : c - 1];
-        l.target = {ws.target[4 * c], ws.target[4 * c + 1], ws.target[4 * c + 2], ws.target[4 * c + 3]};
-        l.alpha = c == cp ? -1.0 : (c == prev ? 1.0 : 0.0);
-        l.beta = c == cp ? -1.0 : (c == next ? 1.0 : 0.0);
-        const double d =
-            corner_value(l.target, xs[l.p1] - xs[l.p0], ys[l.p1] - ys[l.p0], xs[l.p2] - xs[l.p0], ys[l.p2] - ys[l.p0])
-                .d;
-        dmin = std::min(dmin, d);
-        dmax = std::max(dmax, std::abs(d));
-        dsum += d;
-      }
-    }
-    if (too_many || !(dmax > 0)) return;
-    // Regularise only where a corner is not convex (then the plain functional has no barrier).
-    const double delta = dmin > 0 ? 0.0 : 1e-2 * dmax;
-    // Size target: the mean relative corner area around p, frozen for this update (a reference
-    // mesh, or any uniform scaling of it, has D = tau everywhere: still a fixed point).
-    const double tau = dsum / lp.count;
-    const double w = tau > 0 ? options.size_weight : 0.0;
-
-    Eigen::Vector2d g;
-    Eigen::Matrix2d h;
-    local_derivatives(lp, xs, ys, delta, w, tau, g, h);
-    const double px = xs[p], py = ys[p];
-    const double f0 = local_value(lp, p, px, py, xs, ys, delta, w, tau);
-    const double lim = ws.move_limit[p];
-
-    // Candidate position as a function of the step fraction t in (0, 1].
-    double sx = 0, sy = 0;  // interior: full step
-    double sigma0 = ws.arc[p], sigma1 = sigma0;
-    if (kind == RezonePointKind::interior) {
-      Eigen::Matrix2d hs = h;
-      const double tr = h.trace();
-      const double disc = std::sqrt(0.25 * (h(0, 0) - h(1, 1)) * (h(0, 0) - h(1, 1)) + h(0, 1) * h(0, 1));
-      const double lmin = 0.5 * tr - disc, lmax = 0.5 * tr + disc;
-      if (!(lmin > 1e-8 * std::abs(lmax)))
-        hs += (std::abs(lmin) + 1e-3 * std::abs(lmax) + 1e-300) * Eigen::Matrix2d::Identity();
-      const Eigen::Vector2d step = hs.llt().solve(-g);
-      sx = step(0);
-      sy = step(1);
-      // Keep within the move limit around the Lagrangian position.
-      const double dx = px + sx - x_lag[p], dy = py + sy - y_lag[p];
-      const double dist = norm2(dx, dy);
-      if (dist > lim) {
-        sx = x_lag[p] + dx * (lim / dist) - px;
-        sy = y_lag[p] + dy * (lim / dist) - py;
-      }
-      if (!(norm2(sx, sy) > 1e-10 * lim)) return;
-    } else {
-      // Along the old boundary: arc length sigma >= 0 toward b, < 0 toward a.
-      const Eigen::Vector2d db(eb[0], eb[1]), da(-ea[0], -ea[1]);
-      const bool toward_b = sigma0 > 0 || (sigma0 == 0 && g.dot(db) < 0);
-      const Eigen::Vector2d d = toward_b ? db : da;
-      const double gd = g.dot(d), hd = d.dot(h * d);
-      const double s = hd > 0 ? -gd / hd : -gd / (h.norm() + 1e-300);
-      if (sigma0 == 0 && (toward_b ? !(s > 0) : !(s < 0))) return;
-      sigma1 = sigma0 + s;
-      if ((sigma0 > 0 && sigma1 < 0) || (sigma0 < 0 && sigma1 > 0)) sigma1 = 0;  // stop at the kink
-      sigma1 = std::clamp(sigma1, -std::min(0.45 * la, lim), std::min(0.45 * lb, lim));
-      if (!(std::abs(sigma1 - sigma0) > 1e-10 * lim)) return;
-    }
-    const auto position = [&](double t, double* qx, double* qy) {
-      if (kind == RezonePointKind::interior) {
-        *qx = px + t * sx;
-        *qy = py + t * sy;
-      } else {
-        const double sg = sigma0 + t * (sigma1 - sigma0);
-        if (sg >= 0) {
-          *qx = x_lag[p] + sg * eb[0];
-          *qy = y_lag[p] + sg * eb[1];
-        } else {
-          *qx = x_lag[p] - sg * ea[0];
-          *qy = y_lag[p] - sg * ea[1];
-        }
-      }
-    };
-    // Backtracking: accept the first fraction that lowers F and keeps every zone around p
-    // as valid as it was.
-    for (double t = 1; t > 0.1; t *= 0.5) {
-      double qx, qy;
-      position(t, &qx, &qy);
-      if (!(local_value(lp, p, qx, qy, xs, ys, delta, w, tau) < f0)) continue;
-      bool ok = true;
-      for (Index i = cb; i < ce && ok; ++i) {
-        const Index z = mesh.corner_zone[mesh.point_corners[i]];
-        if (zone_crosses(zone_vertices(mesh, z, xs, ys, p, qx, qy)) && !zone_crosses(zone_vertices(mesh, z, xs, ys)))
-          ok = false;
-      }
-      if (!ok) continue;
-      xs[p] = qx;
-      ys[p] = qy;
-      if (kind == RezonePointKind::slide) ws.arc[p] = sigma0 + t * (sigma1 - sigma0);
-      break;
-    }
+    SlideEdges edges;
+    if (kind == RezonePointKind::slide && !slide_edges(rc, p, x_lag, y_lag, cos_corner, edges)) return;
+    if (use_reference)
+      reference_jacobian_point(mesh, p, kind, edges, options.size_weight, ws.move_limit[p], x_lag[p], y_lag[p],
+                               ws.target, xs, ys, ws.arc[p]);
+    else
+      winslow_point(rc, p, kind, edges.ea, edges.eb, edges.la, edges.lb, ws.move_limit[p], x_lag[p], y_lag[p], xs, ys,
+                    ws.arc[p]);
   };
   for (int sweep = 0; sweep < options.iterations; ++sweep)
     for (std::size_t colour = 0; colour + 1 < rc.colour_begin.size(); ++colour) {
@@ -758,7 +519,30 @@ RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& rc, const RezoneO
 #pragma omp parallel for schedule(static) if (count > 20000)
       for (Index i = 0; i < count; ++i) update(rc.colour_points[cb + i]);
     }
+}
 
+}  // namespace
+
+// The stages: inputs checked, the Lagrangian mesh copied (returned as it is for relaxation 0
+// or no sweep), the targets and move limits, the smoothing sweeps, then relaxation and guard.
+RezoneResult rezone(const Mesh& mesh, const RezoneConstraints& rc, const RezoneOptions& options,
+                    std::span<const double> x_lag, std::span<const double> y_lag, std::span<const double> x_ref,
+                    std::span<const double> y_ref, std::span<double> x_new, std::span<double> y_new,
+                    RezoneWorkspace& ws) {
+  check_rezone_inputs(mesh, rc, options, x_lag, y_lag, x_ref, y_ref, x_new, y_new);
+  RezoneResult result;
+  std::copy(x_lag.begin(), x_lag.end(), x_new.begin());
+  std::copy(y_lag.begin(), y_lag.end(), y_new.begin());
+  if (options.relaxation == 0 || options.iterations == 0) return result;
+
+  const Index np = mesh.num_points();
+  ws.xs.assign(x_lag.begin(), x_lag.end());
+  ws.ys.assign(y_lag.begin(), y_lag.end());
+  ws.arc.assign(np, 0.0);
+  ws.move_limit.resize(np);
+  if (options.method == RezoneMethod::reference_jacobian) reference_corner_targets(mesh, x_ref, y_ref, ws.target);
+  move_limits(mesh, rc, options, x_lag, y_lag, ws.move_limit);
+  smoothing_sweeps(mesh, rc, options, x_lag, y_lag, ws);
   return relax_and_guard(mesh, rc, options.relaxation, x_lag, y_lag, ws.xs, ws.ys, x_new, y_new, ws);
 }
 

@@ -129,21 +129,22 @@ inline bool plain_zone_end(const ZoneEndInput& in, const ZoneModel& m) {
 template <int N, class Geometry, bool kPlain = false, class Eos>
 std::int64_t finish_zones(const ZoneEndInput& input, const HydroOptions& o, const ZoneModel& m, const Eos& eos,
                           Index begin, Index end, const ZoneEndOutput& output, DtChoice& choice) {
-  // Thread-private copies, as in force_zones.
-  const ZoneEndInput in = input;
-  const ZoneEndOutput out = output;
-  const Index* cb = in.zone_corner_begin;
-  const Index* cp = in.corner_point;
-  const double *vx = in.vx, *vy = in.vy, *ux = in.ux, *uy = in.uy, *x = in.x, *y = in.y;
-  const double *x_lo = kPlain ? nullptr : in.x_lo, *y_lo = kPlain ? nullptr : in.y_lo;
-  const bool strength = !kPlain && m.strength, burning = !kPlain && m.burn;
-  const bool energy_source = !kPlain && in.energy_source, heat_flux = !kPlain && in.heat_rate;
-  const double dt = in.dt;
-  const bool objective = o.stress_update == StressUpdate::objective;
   std::int64_t failure = kNoFailure;
   DtChoice best;
-#pragma omp parallel firstprivate(in, out) if (end - begin > kParallelMin)
+#pragma omp parallel if (end - begin > kParallelMin)
   {
+    // Thread-private copies, as in force_zones, and the loop's pointers and flags taken from
+    // them inside the region: they stay in registers or the thread's frame.
+    const ZoneEndInput in = input;
+    const ZoneEndOutput out = output;
+    const Index* cb = in.zone_corner_begin;
+    const Index* cp = in.corner_point;
+    const double *vx = in.vx, *vy = in.vy, *ux = in.ux, *uy = in.uy, *x = in.x, *y = in.y;
+    const double *x_lo = kPlain ? nullptr : in.x_lo, *y_lo = kPlain ? nullptr : in.y_lo;
+    const bool strength = !kPlain && m.strength, burning = !kPlain && m.burn;
+    const bool energy_source = !kPlain && in.energy_source, heat_flux = !kPlain && in.heat_rate;
+    const double dt = in.dt;
+    const bool objective = o.stress_update == StressUpdate::objective;
     DtChoice local;
 #pragma omp for schedule(static) reduction(min : failure) nowait
     for (Index z = begin; z < end; ++z) {

@@ -34,9 +34,9 @@ namespace stagger {
 // values and the same decisions. True when either first half holds: then the full test runs.
 [[gnu::always_inline]] inline bool quad_may_cross(const ZoneVertices& v) {
 #if defined(__SSE2__) && !defined(__FMA__)
-  const __m128d ax = _mm_loadu_pd(v.x), ay = _mm_loadu_pd(v.y);          // (v0, v1)
-  const __m128d bx = _mm_loadu_pd(v.x + 1), by = _mm_loadu_pd(v.y + 1);  // (v1, v2)
-  const __m128d cx = _mm_loadu_pd(v.x + 2), cy = _mm_loadu_pd(v.y + 2);  // (v2, v3)
+  const __m128d ax = _mm_loadu_pd(v.x), ay = _mm_loadu_pd(v.y);                  // (v0, v1)
+  const __m128d bx = _mm_loadu_pd(v.x + 1), by = _mm_loadu_pd(v.y + 1);          // (v1, v2)
+  const __m128d cx = _mm_loadu_pd(v.x + 2), cy = _mm_loadu_pd(v.y + 2);          // (v2, v3)
   const __m128d dx = _mm_shuffle_pd(cx, ax, 1), dy = _mm_shuffle_pd(cy, ay, 1);  // (v3, v0)
   const __m128d ex = _mm_sub_pd(bx, ax), ey = _mm_sub_pd(by, ay);
   const __m128d a = _mm_sub_pd(_mm_mul_pd(ex, _mm_sub_pd(cy, ay)), _mm_mul_pd(ey, _mm_sub_pd(cx, ax)));

@@ -158,33 +158,9 @@ std::int64_t finish_zones(const ZoneEndInput& input, const HydroOptions& o, cons
         bx[k] = 0.5 * (vx[p] + nx[k]);
         by[k] = 0.5 * (vy[p] + ny[k]);
       }
-      // Step 7: M_z (e^{n+1} - e^n) = -dt sum_c f_c . v_bar.
-      double energy = energy_after_work(in.e[z], dt, corner_work(n, in.fx + b, in.fy + b, bx, by), in.zone_mass[z]);
-      if (energy_source) {
-        const ZoneVertices vh = gather_vertices<N>(cp, b, n, in.x_half, in.y_half);
-        const auto [cx, cy] = Geometry::template centre<N>(vh);
-        const double se = (*in.energy_source)(cx, cy, in.t_new - 0.5 * dt);
-        energy += dt * se;
-        out.source_energy[z] = dt * se * in.zone_mass[z];
-      }
-      // The heat flux: internal energy exchanged with the neighbours, conservative (§21).
-      if (heat_flux) energy += dt * in.heat_rate[z] / in.zone_mass[z];
-      out.e_new[z] = energy;
-      // Step 8: S^{n+1} = return(S^n + dt dS/dt(S^{n+1/2}, L(v_bar) on the half geometry)).
-      if (strength) {
-        const ZoneVertices vh = gather_vertices<N>(cp, b, n, in.x_half, in.y_half);
-        double ax[kMaxZoneVertices], ay[kMaxZoneVertices];
-        Geometry::template corner_gradients<N>(vh, ax, ay);
-        const double area_h = Geometry::template area<N>(vh);
-        const VelocityGradient L = Geometry::velocity_gradient(n, bx, by, ax, ay, area_h);
-        Deviator sn = advance_stress(objective, m.mu, {in.sxx[z], in.syy[z], in.sxy[z]},
-                                     {in.sxx_half[z], in.syy_half[z], in.sxy_half[z]}, L, dt);
-        if constexpr (Geometry::kRz) add_hoop_stress_rate(m.mu, hoop_strain_rate<N>(vh, bx), dt, sn);
-        out.plastic_new[z] = in.plastic[z] + radial_return(m.yield, m.hardening, in.plastic[z], m.mu, sn);
-        out.sxx_new[z] = sn.xx, out.syy_new[z] = sn.yy, out.sxy_new[z] = sn.xy;
-      }
-      // Step 9: end geometry, density, EOS, time-step candidate.
-      // x^{n+1} = x^n + dt v_bar, formed here and committed after the whole step succeeds.
+      // Step 9's end geometry x^{n+1} = x^n + dt v_bar, formed here (committed after the whole
+      // step succeeds) before the loop's first store, which the compiler must assume could
+      // change x, v or u: read once, not again after the store.
       ZoneVertices ve;
       ve.n = n;
       if (x_lo) {  // compensated (§20): the low parts join the step
@@ -200,15 +176,40 @@ std::int64_t finish_zones(const ZoneEndInput& input, const HydroOptions& o, cons
           ve.y[k] = y[p] + dt * 0.5 * (vy[p] + uy[p]);
         }
       }
+      // Step 7: M_z (e^{n+1} - e^n) = -dt sum_c f_c . v_bar.
+      const double mass = in.zone_mass[z];
+      double energy = energy_after_work(in.e[z], dt, corner_work(n, in.fx + b, in.fy + b, bx, by), mass);
+      if (energy_source) {
+        const ZoneVertices vh = gather_vertices<N>(cp, b, n, in.x_half, in.y_half);
+        const auto [cx, cy] = Geometry::template centre<N>(vh);
+        const double se = (*in.energy_source)(cx, cy, in.t_new - 0.5 * dt);
+        energy += dt * se;
+        out.source_energy[z] = dt * se * mass;
+      }
+      // The heat flux: internal energy exchanged with the neighbours, conservative (§21).
+      if (heat_flux) energy += dt * in.heat_rate[z] / mass;
+      out.e_new[z] = energy;
+      // Step 8: S^{n+1} = return(S^n + dt dS/dt(S^{n+1/2}, L(v_bar) on the half geometry)).
+      if (strength) {
+        const ZoneVertices vh = gather_vertices<N>(cp, b, n, in.x_half, in.y_half);
+        double ax[kMaxZoneVertices], ay[kMaxZoneVertices];
+        Geometry::template corner_gradients<N>(vh, ax, ay);
+        const double area_h = Geometry::template area<N>(vh);
+        const VelocityGradient L = Geometry::velocity_gradient(n, bx, by, ax, ay, area_h);
+        Deviator sn = advance_stress(objective, m.mu, {in.sxx[z], in.syy[z], in.sxy[z]},
+                                     {in.sxx_half[z], in.syy_half[z], in.sxy_half[z]}, L, dt);
+        if constexpr (Geometry::kRz) add_hoop_stress_rate(m.mu, hoop_strain_rate<N>(vh, bx), dt, sn);
+        out.plastic_new[z] = in.plastic[z] + radial_return(m.yield, m.hardening, in.plastic[z], m.mu, sn);
+        out.sxx_new[z] = sn.xx, out.syy_new[z] = sn.yy, out.sxy_new[z] = sn.xy;
+      }
       double burn = 1;
       if (burning) {
         burn = burn_fraction(in.burn[z], in.t_new, in.lighting_time[z], in.burn_length[z], m.burn_model,
-                             in.zone_mass[z] / zone_measure<N, Geometry>(ve));
+                             mass / zone_measure<N, Geometry>(ve));
         out.burn_new[z] = burn;
       }
       double dtz = 1e300;
-      std::int64_t code =
-          end_state<N, Geometry, kPlain>(z, ve, nx, ny, in.zone_mass[z], energy, burn, o, eos, m, out.state, dtz);
+      std::int64_t code = end_state<N, Geometry, kPlain>(z, ve, nx, ny, mass, energy, burn, o, eos, m, out.state, dtz);
       if (code == kNoFailure && !std::isfinite(energy)) code = failure_code(z, kNotFinite);
       failure = std::min(failure, code);
       if (dtz < local.dt) local = {dtz, z};

@@ -202,6 +202,7 @@ std::int64_t finish_zones(const ZoneEndInput& input, const HydroOptions& o, cons
         out.plastic_new[z] = in.plastic[z] + radial_return(m.yield, m.hardening, in.plastic[z], m.mu, sn);
         out.sxx_new[z] = sn.xx, out.syy_new[z] = sn.yy, out.sxy_new[z] = sn.xy;
       }
+      // Step 9: density, EOS and time-step candidate on the end geometry.
       double burn = 1;
       if (burning) {
         burn = burn_fraction(in.burn[z], in.t_new, in.lighting_time[z], in.burn_length[z], m.burn_model,

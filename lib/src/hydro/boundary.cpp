@@ -215,29 +215,43 @@ Index step_wall_crossing(Simulation::Impl& s, double dt) {
   const double *x_lo = s.x_lo.empty() ? nullptr : s.x_lo.data(), *y_lo = s.y_lo.empty() ? nullptr : s.y_lo.data();
   // x^{n+1} = x^n + dt v_bar, as Z2 and the commit form it.
   const double half_dt = dt * 0.5;
+  const Index blocks = (np + WallClearance::kBlock - 1) / WallClearance::kBlock;
+  if (c.block_spent.size() != static_cast<std::size_t>(blocks)) c.block_spent.assign(blocks, 1);
+  unsigned char* spent = c.block_spent.data();
   if (!fresh) {
     // Every budget less the step's length (|step| <= |dx| + |dy|): a step shorter than the
-    // budget cannot reach a wall; a non-positive (or NaN) result marks the point for the test.
-    // Branch-free, so that it vectorises.
+    // budget cannot reach a wall; a non-positive (or NaN) result marks the point for the test,
+    // and its block for the scan below. Branch-free, so that it vectorises.
 #pragma omp parallel for schedule(static) if (np > 20000)
-    for (Index p = 0; p < np; ++p) {
-      const double x1 = advanced(x[p], half_dt * (vx[p] + ux[p]), x_lo, p);
-      const double y1 = advanced(y[p], half_dt * (vy[p] + uy[p]), y_lo, p);
-      const double left = budget[p] - (std::abs(x1 - x[p]) + std::abs(y1 - y[p]));
-      // Rounded down: a float rounds by at most 2^-24 relative.
-      budget[p] = static_cast<float>(left - std::abs(left) * 0x1p-22);
+    for (Index k = 0; k < blocks; ++k) {
+      const Index p1 = std::min(np, (k + 1) * WallClearance::kBlock);
+      int out = 0;
+      for (Index p = k * WallClearance::kBlock; p < p1; ++p) {
+        const double x1 = advanced(x[p], half_dt * (vx[p] + ux[p]), x_lo, p);
+        const double y1 = advanced(y[p], half_dt * (vy[p] + uy[p]), y_lo, p);
+        const double left = budget[p] - (std::abs(x1 - x[p]) + std::abs(y1 - y[p]));
+        // Rounded down: a float rounds by at most 2^-24 relative.
+        const float b = static_cast<float>(left - std::abs(left) * 0x1p-22);
+        budget[p] = b;
+        out |= !(b > 0);
+      }
+      spent[k] = static_cast<unsigned char>(out);
     }
   }
   const double slack = c.slack;
   Index first = np;
 #pragma omp parallel for schedule(static) reduction(min : first) if (np > 20000)
-  for (Index p = 0; p < np; ++p) {
-    if (!fresh && budget[p] > 0) continue;
-    if (!s.ghost_point.empty() && s.ghost_point[p]) continue;  // a distributed run: this rank's points
-    const double x1 = advanced(x[p], half_dt * (vx[p] + ux[p]), x_lo, p);
-    const double y1 = advanced(y[p], half_dt * (vy[p] + uy[p]), y_lo, p);
-    if (crossed_wall(s, p, x[p], y[p], x1, y1)) first = std::min(first, p);
-    budget[p] = round_down(wall_clearance(s, p, x1, y1) - slack - 1e-12 * (std::abs(x1) + std::abs(y1)));
+  for (Index k = 0; k < blocks; ++k) {
+    if (!fresh && !spent[k]) continue;  // every budget of the block left: nothing to test
+    const Index p1 = std::min(np, (k + 1) * WallClearance::kBlock);
+    for (Index p = k * WallClearance::kBlock; p < p1; ++p) {
+      if (!fresh && budget[p] > 0) continue;
+      if (!s.ghost_point.empty() && s.ghost_point[p]) continue;  // a distributed run: this rank's points
+      const double x1 = advanced(x[p], half_dt * (vx[p] + ux[p]), x_lo, p);
+      const double y1 = advanced(y[p], half_dt * (vy[p] + uy[p]), y_lo, p);
+      if (crossed_wall(s, p, x[p], y[p], x1, y1)) first = std::min(first, p);
+      budget[p] = round_down(wall_clearance(s, p, x1, y1) - slack - 1e-12 * (std::abs(x1) + std::abs(y1)));
+    }
   }
   // A step that crosses a wall is rejected (recompute_state invalidates the budgets).
   c.valid = true;

@@ -235,8 +235,13 @@ std::int64_t Simulation::Impl::zone_forces(const double* px, const double* py, d
   const HydroOptions& o = problem.options;
   std::int64_t failure = kNoFailure;
   for_each_range(*this, [&](const ZoneRange& r, const auto& eos, const ZoneModel& m) {
+    // The plain instantiation where it gives the same bits (zone_forces.hpp).
+    const bool plain = plain_zone_forces(in, o, m);
     const std::int64_t code = with_geometry(rz, [&](auto g) {
       using G = decltype(g);
+      if (plain)
+        return all_quads ? force_zones<4, G, true>(in, o, m, eos, r.begin, r.end, out)
+                         : force_zones<0, G, true>(in, o, m, eos, r.begin, r.end, out);
       return all_quads ? force_zones<4, G>(in, o, m, eos, r.begin, r.end, out)
                        : force_zones<0, G>(in, o, m, eos, r.begin, r.end, out);
     });
@@ -430,8 +435,13 @@ std::int64_t Simulation::Impl::end_of_step(double dt, double t_new) {
   std::int64_t failure = kNoFailure;
   for_each_range(*this, [&](const ZoneRange& r, const auto& eos, const ZoneModel& m) {
     DtChoice& target = r.ghost ? ghost_choice : choice;
+    // The plain instantiation where it gives the same bits (zone_end.hpp).
+    const bool plain = plain_zone_end(in, m);
     const std::int64_t code = with_geometry(rz, [&](auto g) {
       using G = decltype(g);
+      if (plain)
+        return all_quads ? finish_zones<4, G, true>(in, o, m, eos, r.begin, r.end, out, target)
+                         : finish_zones<0, G, true>(in, o, m, eos, r.begin, r.end, out, target);
       return all_quads ? finish_zones<4, G>(in, o, m, eos, r.begin, r.end, out, target)
                        : finish_zones<0, G>(in, o, m, eos, r.begin, r.end, out, target);
     });

@@ -40,6 +40,10 @@ struct WallGrid {
 struct WallClearance {
   static constexpr long kRefreshCycles = 1024;
   std::vector<float> budget;  // per point, rounded down
+  // Per block of kBlock points: some budget of the block ran out in this step's subtraction
+  // (only those blocks hold points to test).
+  static constexpr Index kBlock = 256;
+  std::vector<unsigned char> block_spent;
   bool valid = false;
   bool charged = false;  // the last remap subtracted its moves from the valid budgets
   long cycle = 0;        // the cycle at which every budget was last computed afresh

@@ -41,13 +41,15 @@ struct ZoneStateOutput {
 // checked), density, EOS (p times the burn fraction), full sound speed, L(u) on the end geometry (strength) and
 // the time-step candidate dt_zone from div u. Shared with the state recomputation (set-up,
 // restart, remap, failed step) so that a restart reproduces it bitwise. Returns the failure
-// code or kNoFailure; writes nothing of the state on failure before the EOS.
-template <int N, class Geometry, class Eos>
+// code or kNoFailure; writes nothing of the state on failure before the EOS. kPlain: the
+// material has neither strength nor burn (m's flags are then not read).
+template <int N, class Geometry, bool kPlain = false, class Eos>
 [[gnu::always_inline]] inline std::int64_t end_state(Index z, const ZoneVertices& v, const double* ux, const double* uy,
                                                      double mass, double energy, double burn, const HydroOptions& o,
                                                      const Eos& eos, const ZoneModel& m, const ZoneStateOutput& out,
                                                      double& dt_zone) {
   double ca[kMaxZoneVertices], ax[kMaxZoneVertices], ay[kMaxZoneVertices];
+  const bool strength = !kPlain && m.strength, burning = !kPlain && m.burn;
   const double area = Geometry::template area<N>(v);
   // Always: a non-positive area or crossing edges (docs/algorithm.md §9); optionally also a
   // folded median-mesh corner.
@@ -64,10 +66,10 @@ template <int N, class Geometry, class Eos>
   const double rho = mass / measure;
   eos::PressureSound ps{};
   if (!eos::evaluate(eos, rho, energy, ps) || energy < m.min_energy) return failure_code(z, kEosDomain);
-  const double C = full_sound_speed(ps.c2, rho, m.strength, m.mu);
+  const double C = full_sound_speed(ps.c2, rho, strength, m.mu);
   out.area[z] = measure;
   out.rho[z] = rho;
-  out.p[z] = m.burn ? burn * ps.p : ps.p;
+  out.p[z] = burning ? burn * ps.p : ps.p;
   out.c[z] = C;
   if (!std::isfinite(out.p[z]) || !std::isfinite(C)) return failure_code(z, kNotFinite);
   const int n = N ? N : v.n;
@@ -78,7 +80,7 @@ template <int N, class Geometry, class Eos>
   } else {
     div = Geometry::divergence(n, ux, uy, ax, ay, area);
   }
-  if (m.strength) {
+  if (strength) {
     // The next step's predictor needs L(v^n) on x^n: this is it.
     const VelocityGradient L = Geometry::velocity_gradient(n, ux, uy, ax, ay, area);
     out.grad_xx[z] = L.xx, out.grad_xy[z] = L.xy, out.grad_yx[z] = L.yx, out.grad_yy[z] = L.yy;
@@ -115,24 +117,34 @@ struct ZoneEndOutput {
   ZoneStateOutput state;
 };
 
+// Z2 needs none of strength, burn, energy source, heat flux or the positions' low parts:
+// finish_zones<N, G, true> then gives the same bits without testing for them per zone.
+inline bool plain_zone_end(const ZoneEndInput& in, const ZoneModel& m) {
+  return !m.strength && !m.burn && !in.energy_source && !in.heat_rate && !in.x_lo;
+}
+
 // Z2 over the zones [begin, end) of one material. Merges the zones' dt candidates into
-// `choice`; returns the lowest zone's failure code, kNoFailure if none.
-template <int N, class Geometry, class Eos>
+// `choice`; returns the lowest zone's failure code, kNoFailure if none. kPlain: plain_zone_end
+// holds, and the tests for what it excludes are compiled out.
+template <int N, class Geometry, bool kPlain = false, class Eos>
 std::int64_t finish_zones(const ZoneEndInput& input, const HydroOptions& o, const ZoneModel& m, const Eos& eos,
                           Index begin, Index end, const ZoneEndOutput& output, DtChoice& choice) {
-  // Thread-private copies, as in force_zones.
-  const ZoneEndInput in = input;
-  const ZoneEndOutput out = output;
-  const Index* cb = in.zone_corner_begin;
-  const Index* cp = in.corner_point;
-  const double *vx = in.vx, *vy = in.vy, *ux = in.ux, *uy = in.uy, *x = in.x, *y = in.y;
-  const double *x_lo = in.x_lo, *y_lo = in.y_lo;
-  const double dt = in.dt;
-  const bool objective = o.stress_update == StressUpdate::objective;
   std::int64_t failure = kNoFailure;
   DtChoice best;
-#pragma omp parallel firstprivate(in, out) if (end - begin > kParallelMin)
+#pragma omp parallel if (end - begin > kParallelMin)
   {
+    // Thread-private copies, as in force_zones, and the loop's pointers and flags taken from
+    // them inside the region: they stay in registers or the thread's frame.
+    const ZoneEndInput in = input;
+    const ZoneEndOutput out = output;
+    const Index* cb = in.zone_corner_begin;
+    const Index* cp = in.corner_point;
+    const double *vx = in.vx, *vy = in.vy, *ux = in.ux, *uy = in.uy, *x = in.x, *y = in.y;
+    const double *x_lo = kPlain ? nullptr : in.x_lo, *y_lo = kPlain ? nullptr : in.y_lo;
+    const bool strength = !kPlain && m.strength, burning = !kPlain && m.burn;
+    const bool energy_source = !kPlain && in.energy_source, heat_flux = !kPlain && in.heat_rate;
+    const double dt = in.dt;
+    const bool objective = o.stress_update == StressUpdate::objective;
     DtChoice local;
 #pragma omp for schedule(static) reduction(min : failure) nowait
     for (Index z = begin; z < end; ++z) {
@@ -146,33 +158,9 @@ std::int64_t finish_zones(const ZoneEndInput& input, const HydroOptions& o, cons
         bx[k] = 0.5 * (vx[p] + nx[k]);
         by[k] = 0.5 * (vy[p] + ny[k]);
       }
-      // Step 7: M_z (e^{n+1} - e^n) = -dt sum_c f_c . v_bar.
-      double energy = energy_after_work(in.e[z], dt, corner_work(n, in.fx + b, in.fy + b, bx, by), in.zone_mass[z]);
-      if (in.energy_source) {
-        const ZoneVertices vh = gather_vertices<N>(cp, b, n, in.x_half, in.y_half);
-        const auto [cx, cy] = Geometry::template centre<N>(vh);
-        const double se = (*in.energy_source)(cx, cy, in.t_new - 0.5 * dt);
-        energy += dt * se;
-        out.source_energy[z] = dt * se * in.zone_mass[z];
-      }
-      // The heat flux: internal energy exchanged with the neighbours, conservative (§21).
-      if (in.heat_rate) energy += dt * in.heat_rate[z] / in.zone_mass[z];
-      out.e_new[z] = energy;
-      // Step 8: S^{n+1} = return(S^n + dt dS/dt(S^{n+1/2}, L(v_bar) on the half geometry)).
-      if (m.strength) {
-        const ZoneVertices vh = gather_vertices<N>(cp, b, n, in.x_half, in.y_half);
-        double ax[kMaxZoneVertices], ay[kMaxZoneVertices];
-        Geometry::template corner_gradients<N>(vh, ax, ay);
-        const double area_h = Geometry::template area<N>(vh);
-        const VelocityGradient L = Geometry::velocity_gradient(n, bx, by, ax, ay, area_h);
-        Deviator sn = advance_stress(objective, m.mu, {in.sxx[z], in.syy[z], in.sxy[z]},
-                                     {in.sxx_half[z], in.syy_half[z], in.sxy_half[z]}, L, dt);
-        if constexpr (Geometry::kRz) add_hoop_stress_rate(m.mu, hoop_strain_rate<N>(vh, bx), dt, sn);
-        out.plastic_new[z] = in.plastic[z] + radial_return(m.yield, m.hardening, in.plastic[z], m.mu, sn);
-        out.sxx_new[z] = sn.xx, out.syy_new[z] = sn.yy, out.sxy_new[z] = sn.xy;
-      }
-      // Step 9: end geometry, density, EOS, time-step candidate.
-      // x^{n+1} = x^n + dt v_bar, formed here and committed after the whole step succeeds.
+      // Step 9's end geometry x^{n+1} = x^n + dt v_bar, formed here (committed after the whole
+      // step succeeds) before the loop's first store, which the compiler must assume could
+      // change x, v or u: read once, not again after the store.
       ZoneVertices ve;
       ve.n = n;
       if (x_lo) {  // compensated (§20): the low parts join the step
@@ -188,15 +176,41 @@ std::int64_t finish_zones(const ZoneEndInput& input, const HydroOptions& o, cons
           ve.y[k] = y[p] + dt * 0.5 * (vy[p] + uy[p]);
         }
       }
+      // Step 7: M_z (e^{n+1} - e^n) = -dt sum_c f_c . v_bar.
+      const double mass = in.zone_mass[z];
+      double energy = energy_after_work(in.e[z], dt, corner_work(n, in.fx + b, in.fy + b, bx, by), mass);
+      if (energy_source) {
+        const ZoneVertices vh = gather_vertices<N>(cp, b, n, in.x_half, in.y_half);
+        const auto [cx, cy] = Geometry::template centre<N>(vh);
+        const double se = (*in.energy_source)(cx, cy, in.t_new - 0.5 * dt);
+        energy += dt * se;
+        out.source_energy[z] = dt * se * mass;
+      }
+      // The heat flux: internal energy exchanged with the neighbours, conservative (§21).
+      if (heat_flux) energy += dt * in.heat_rate[z] / mass;
+      out.e_new[z] = energy;
+      // Step 8: S^{n+1} = return(S^n + dt dS/dt(S^{n+1/2}, L(v_bar) on the half geometry)).
+      if (strength) {
+        const ZoneVertices vh = gather_vertices<N>(cp, b, n, in.x_half, in.y_half);
+        double ax[kMaxZoneVertices], ay[kMaxZoneVertices];
+        Geometry::template corner_gradients<N>(vh, ax, ay);
+        const double area_h = Geometry::template area<N>(vh);
+        const VelocityGradient L = Geometry::velocity_gradient(n, bx, by, ax, ay, area_h);
+        Deviator sn = advance_stress(objective, m.mu, {in.sxx[z], in.syy[z], in.sxy[z]},
+                                     {in.sxx_half[z], in.syy_half[z], in.sxy_half[z]}, L, dt);
+        if constexpr (Geometry::kRz) add_hoop_stress_rate(m.mu, hoop_strain_rate<N>(vh, bx), dt, sn);
+        out.plastic_new[z] = in.plastic[z] + radial_return(m.yield, m.hardening, in.plastic[z], m.mu, sn);
+        out.sxx_new[z] = sn.xx, out.syy_new[z] = sn.yy, out.sxy_new[z] = sn.xy;
+      }
+      // Step 9: density, EOS and time-step candidate on the end geometry.
       double burn = 1;
-      if (m.burn) {
+      if (burning) {
         burn = burn_fraction(in.burn[z], in.t_new, in.lighting_time[z], in.burn_length[z], m.burn_model,
-                             in.zone_mass[z] / zone_measure<N, Geometry>(ve));
+                             mass / zone_measure<N, Geometry>(ve));
         out.burn_new[z] = burn;
       }
       double dtz = 1e300;
-      std::int64_t code =
-          end_state<N, Geometry>(z, ve, nx, ny, in.zone_mass[z], energy, burn, o, eos, m, out.state, dtz);
+      std::int64_t code = end_state<N, Geometry, kPlain>(z, ve, nx, ny, mass, energy, burn, o, eos, m, out.state, dtz);
       if (code == kNoFailure && !std::isfinite(energy)) code = failure_code(z, kNotFinite);
       failure = std::min(failure, code);
       if (dtz < local.dt) local = {dtz, z};

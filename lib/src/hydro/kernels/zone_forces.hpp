@@ -54,9 +54,19 @@ struct ZoneForceOutput {
   double *sxx_half, *syy_half, *sxy_half;  // S^{n+1/2} (strength)
 };
 
+// Z1 needs none of strength, burn, energy source, heat flux, tensor q or subzonal pressures
+// (the gas with bulk q, hourglass or edge viscosity): force_zones<N, G, true> then gives the
+// same bits without testing for them per zone (docs/benchmarks.md, "Lagrangian step speed").
+inline bool plain_zone_forces(const ZoneForceInput& in, const HydroOptions& o, const ZoneModel& m) {
+  const bool subzonal_hourglass = o.hourglass == Hourglass::subzonal || o.hourglass == Hourglass::subzonal_triangles;
+  return !m.strength && !m.burn && !in.energy_source && !in.heat_rate && o.viscosity != Viscosity::tensor &&
+         !subzonal_hourglass;
+}
+
 // Z1 over the zones [begin, end) of one material (EOS `eos`, constants `m`). Returns the
-// lowest zone's failure code, kNoFailure if none.
-template <int N, class Geometry, class Eos>
+// lowest zone's failure code, kNoFailure if none. kPlain: plain_zone_forces holds, and the
+// tests for what it excludes are compiled out.
+template <int N, class Geometry, bool kPlain = false, class Eos>
 std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, const ZoneModel& m, const Eos& eos,
                          Index begin, Index end, const ZoneForceOutput& output) {
   // Thread-private copies: the loop's stores cannot alias them, so their fields stay in
@@ -67,13 +77,15 @@ std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, con
   const Index* cp = in.corner_point;
   const double *vx = in.vx, *vy = in.vy, *x = in.x, *y = in.y;
   const bool bulk_q = o.viscosity == Viscosity::bulk;
-  const bool tensor_q = o.viscosity == Viscosity::tensor;
+  const bool tensor_q = !kPlain && o.viscosity == Viscosity::tensor;
   const bool objective = o.stress_update == StressUpdate::objective;
   const bool subzonal_any = o.hourglass == Hourglass::subzonal || o.hourglass == Hourglass::subzonal_triangles;
-  const bool subzonal = subzonal_any && o.hourglass_coefficient > 0;
+  const bool subzonal = !kPlain && subzonal_any && o.hourglass_coefficient > 0;
   const Subzones subzones = o.hourglass == Hourglass::subzonal ? Subzones::corners : Subzones::triangles;
   const double hg = subzonal_any ? 0.0 : o.hourglass_coefficient;
   const bool fb = o.hourglass == Hourglass::flanagan_belytschko;
+  const bool strength = !kPlain && m.strength, burn = !kPlain && m.burn;
+  const bool energy_source = !kPlain && in.energy_source, heat_flux = !kPlain && in.heat_rate;
   std::int64_t failure = kNoFailure;
 
 #pragma omp parallel for schedule(static) reduction(min : failure) firstprivate(in, out) if (end - begin > kParallelMin)
@@ -114,16 +126,16 @@ std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, con
     double e_half = in.e[z];
     if (in.dt_half > 0)
       e_half = energy_after_work(e_half, in.dt_half, corner_work(n, in.f_prev_x + b, in.f_prev_y + b, vnx, vny), mass);
-    if (in.energy_source && in.dt_half > 0) {
+    if (energy_source && in.dt_half > 0) {
       // The predictor integrates the energy source too (at the middle of [t^n, t^{n+1/2}]),
       // or the scheme drops to first order in time; the audit counts only step 7's source.
       const auto [cx, cy] = Geometry::template centre<N>(v);
       e_half += in.dt_half * (*in.energy_source)(cx, cy, in.t_eval - 0.5 * in.dt_half);
     }
     // The heat flux's half step, for the same reason (docs/algorithm.md §21).
-    if (in.heat_rate && in.dt_half > 0) e_half += in.dt_half * in.heat_rate[z] / mass;
+    if (heat_flux && in.dt_half > 0) e_half += in.dt_half * in.heat_rate[z] / mass;
     Deviator sh;
-    if (m.strength) {
+    if (strength) {
       // L(v^n) on x^n: kept from the end of the last step, bitwise what recomputing it gives.
       const VelocityGradient L{in.grad_xx[z], in.grad_xy[z], in.grad_yx[z], in.grad_yy[z]};
       if constexpr (Geometry::kRz) {
@@ -156,9 +168,9 @@ std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, con
       failure = std::min(failure, failure_code(z, kEosDomain));
     }
     double pressure = ps.p;
-    if (m.burn)
+    if (burn)
       pressure *= burn_fraction(in.burn[z], in.t_eval, in.lighting_time[z], in.burn_length[z], m.burn_model, rho);
-    const double C = full_sound_speed(ps.c2, rho, m.strength, m.mu);
+    const double C = full_sound_speed(ps.c2, rho, strength, m.mu);
     // Step 5: bulk q from div v* on the half geometry.
     double div;
     if constexpr (Geometry::kRz) {
@@ -182,7 +194,7 @@ std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, con
                                       rho, C, o.q1, o.q2, out.fx + b, out.fy + b);
     if constexpr (Geometry::kRz) {
       // Area-weighted: the hoop body force on the planar corner areas.
-      if (m.strength) {
+      if (strength) {
         double ca[kMaxZoneVertices];
         Geometry::template corner_areas<N>(v, ca);
         add_hoop_forces(n, sh, ca, measure / area, out.fx + b, out.fy + b);

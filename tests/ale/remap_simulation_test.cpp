@@ -14,37 +14,18 @@
 #include "stagger/verify.hpp"
 #include "support/copper.hpp"
 #include "support/gas_problem.hpp"
+#include "support/sod_error.hpp"
 
 namespace stagger {
 
 namespace {
 
-double sod_l1_density(const Simulation& sim) {
-  const ExactRiemann exact({1.0, 0.0, 1.0}, {0.125, 0.0, 0.1}, 1.4, 0.5);
-  const Mesh& m = sim.mesh();
-  double num = 0, den = 0;
-  for (Index z = 0; z < m.num_zones(); ++z) {
-    double cx = 0;
-    const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
-    for (Index k = 0; k < n; ++k) cx += sim.x()[m.corner_point[b + k]] / n;
-    num += sim.zone_area()[z] * std::abs(sim.density()[z] - exact.sample(cx, sim.time()).density);
-    den += sim.zone_area()[z];
-  }
-  return num / den;
-}
+using testing::sod_l1_density;
 
 // A spherical blast in rz (docs/ale.md, "ALE in rz"): gamma = 1.4 on an equal-angle quarter
 // disc, the shock at r = 1 at t = 1 (0.398 at t = 0.1), ALE with the default rezone.
 Problem rz_blast(int remap_every) {
-  Problem p = testing::gas_problem(build_mesh(meshgen::annulus_sector(0, 1.2, 0, M_PI / 2, 8, 24)), 1.4, 0.1);
-  p.regions.push_back(testing::uniform_region(1.0, 1e-10 * 0.4));
-  testing::walls(p, {"start", "end", "outer"});
-  p.deposits.push_back({0.0, 0.0, 0.0677262});
-  p.options.geometry = CoordinateSystem::rz;
-  p.options.viscosity = Viscosity::edge;
-  p.options.hourglass = Hourglass::gamma;
-  p.options.hourglass_coefficient = 0.1;
-  p.options.cfl = 0.15;
+  Problem p = testing::rz_blast_problem(8, 24);
   p.ale.mode = AleMode::ale;
   p.ale.remap_every = remap_every;
   return p;

@@ -2,6 +2,7 @@
 // Gas problems built in code for the tests (no scene files needed): a rectangle mesh, the
 // ideal gas "gas" filling the region "domain", boundary conditions by tag, Sod's tube and
 // Sedov's quarter-plane blast.
+#include <cmath>
 #include <initializer_list>
 #include <string>
 #include <utility>
@@ -119,6 +120,21 @@ inline Problem sedov_quarter_problem(int n, double t_end, const MeshBuildOptions
   p.regions.push_back(r);
   walls(p);
   p.deposits.push_back({0, 0, 0.244816});
+  return p;
+}
+
+/// A spherical blast in rz (docs/ale.md, "ALE in rz") on an equal-angle quarter disc of radius
+/// 1.2 (`angles` x `rings` zones): the shock at r = 1 at t = 1 (0.398 at t = 0.1, the end time).
+inline Problem rz_blast_problem(int angles, int rings) {
+  Problem p = gas_problem(build_mesh(meshgen::annulus_sector(0, 1.2, 0, M_PI / 2, angles, rings)), 1.4, 0.1);
+  p.regions.push_back(uniform_region(1.0, 1e-10 * 0.4));
+  walls(p, {"start", "end", "outer"});
+  p.deposits.push_back({0.0, 0.0, 0.0677262});
+  p.options.geometry = CoordinateSystem::rz;
+  p.options.viscosity = Viscosity::edge;
+  p.options.hourglass = Hourglass::gamma;
+  p.options.hourglass_coefficient = 0.1;
+  p.options.cfl = 0.15;
   return p;
 }
 

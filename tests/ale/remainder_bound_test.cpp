@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -14,6 +13,7 @@
 #include "remap_state.hpp"
 #include "stagger/mesh.hpp"
 #include "stagger/meshgen.hpp"
+#include "support/bitwise.hpp"
 
 namespace {
 
@@ -80,10 +80,7 @@ State make_state(const Mesh& m, CornerRho corner_rho, E energy) {
 }
 
 bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    if (std::memcmp(&a[i], &b[i], sizeof(double)) != 0) return false;
-  return true;
+  return stagger::testing::bitwise_equal(a, b);
 }
 
 // A row of five unit zones; zone 2 (x in [2, 3]) holds 90 % of its mass in its two corners at

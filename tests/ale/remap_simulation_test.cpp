@@ -7,43 +7,25 @@
 #include <cstdio>
 #include <limits>
 
-#include "../hydro/problems.hpp"
 #include "hydro/boundary.hpp"
 #include "hydro/simulation_impl.hpp"
 #include "stagger/meshgen.hpp"
 #include "stagger/simulation.hpp"
 #include "stagger/verify.hpp"
+#include "support/copper.hpp"
+#include "support/gas_problem.hpp"
+#include "support/sod_error.hpp"
 
 namespace stagger {
 
 namespace {
 
-double sod_l1_density(const Simulation& sim) {
-  const ExactRiemann exact({1.0, 0.0, 1.0}, {0.125, 0.0, 0.1}, 1.4, 0.5);
-  const Mesh& m = sim.mesh();
-  double num = 0, den = 0;
-  for (Index z = 0; z < m.num_zones(); ++z) {
-    double cx = 0;
-    const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
-    for (Index k = 0; k < n; ++k) cx += sim.x()[m.corner_point[b + k]] / n;
-    num += sim.zone_area()[z] * std::abs(sim.density()[z] - exact.sample(cx, sim.time()).density);
-    den += sim.zone_area()[z];
-  }
-  return num / den;
-}
+using testing::sod_l1_density;
 
 // A spherical blast in rz (docs/ale.md, "ALE in rz"): gamma = 1.4 on an equal-angle quarter
 // disc, the shock at r = 1 at t = 1 (0.398 at t = 0.1), ALE with the default rezone.
 Problem rz_blast(int remap_every) {
-  Problem p = testing::gas_problem(build_mesh(meshgen::annulus_sector(0, 1.2, 0, M_PI / 2, 8, 24)), 1.4, 0.1);
-  p.regions.push_back(testing::uniform_region(1.0, 1e-10 * 0.4));
-  testing::walls(p, {"start", "end", "outer"});
-  p.deposits.push_back({0.0, 0.0, 0.0677262});
-  p.options.geometry = CoordinateSystem::rz;
-  p.options.viscosity = Viscosity::edge;
-  p.options.hourglass = Hourglass::gamma;
-  p.options.hourglass_coefficient = 0.1;
-  p.options.cfl = 0.15;
+  Problem p = testing::rz_blast_problem(8, 24);
   p.ale.mode = AleMode::ale;
   p.ale.remap_every = remap_every;
   return p;
@@ -128,13 +110,8 @@ TEST(RemapSimulation, AleSedovKeepsTheAuditAtRoundOff) {
   // A point blast on a Cartesian quarter plane with the default ALE (Winslow rezone, remap
   // every cycle): the total energy audit stays at round-off across hundreds of remaps.
   Problem p = testing::gas_problem(testing::rectangle_mesh(1.2, 1.2, 30, 30), 1.4, 0.3);
-  RegionSetup r;
-  r.region = "domain";
-  r.material = "gas";
-  r.density = constant_field(1.0);
-  r.pressure = constant_field(1e-6);
-  p.regions.push_back(r);
-  testing::walls(p, {"left", "right", "bottom", "top"});
+  p.regions.push_back(testing::uniform_region(1.0, 1e-6));
+  testing::walls(p);
   p.deposits.push_back({0.0, 0.0, 0.25 * 0.851072});
   p.options.check_corner_areas = false;
   p.ale.mode = AleMode::ale;
@@ -155,11 +132,7 @@ TEST(RemapSimulation, StiffSolidKeepsItsInternalEnergyAcrossRemaps) {
   Problem p;
   p.name = "test";
   p.mesh = testing::rectangle_mesh(0.005, 0.01, 10, 20);
-  Material copper;
-  copper.name = "copper";
-  copper.eos = MieGruneisen{8930.0, 3940.0, 2.0, 1.49};
-  copper.strength = Strength{45e9, 90e6, 0};
-  p.materials.push_back(copper);
+  p.materials.push_back(testing::piston_copper());
   RegionSetup r = testing::uniform_region(8930.0, 1e5, 0.0, -800.0);
   r.material = "copper";
   p.regions.push_back(r);
@@ -231,7 +204,7 @@ TEST(RemapSimulation, LagrangianModeInstallsNoRemap) {
 TEST(RemapSimulation, WallBudgetsStayLowerBoundsAcrossRemaps) {
   Problem p = testing::gas_problem(testing::rectangle_mesh(2.0, 1.0, 24, 12), 1.4, 0.15);
   p.regions.push_back(testing::uniform_region(1.0, 0.1));
-  testing::walls(p, {"left", "right", "bottom", "top"});
+  testing::walls(p);
   p.deposits.push_back({0.35, 0.2, 0.5, 0.1});  // near the bottom wall: the rezone moves points beside it
   p.ale.mode = AleMode::ale;
   p.ale.remap_every = 1;

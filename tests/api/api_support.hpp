@@ -1,5 +1,6 @@
 #pragma once
-// Problems built through the public API only, and a bitwise comparison of two states.
+// Problems built through the public API only (on the shared builders of tests/support/), and
+// a bitwise comparison of two states.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -7,47 +8,29 @@
 #include <string>
 #include <utility>
 
-#include "stagger/meshgen.hpp"
 #include "stagger/problem.hpp"
 #include "stagger/simulation.hpp"
+#include "support/bitwise.hpp"
+#include "support/gas_problem.hpp"
 
 namespace stagger::api_test {
 
 /// A rigid wall on boundary tag `tag`.
 inline BoundaryCondition wall(const std::string& tag) {
-  BoundaryCondition condition;
-  condition.tag = tag;
-  condition.kind = BoundaryKind::wall;
-  return condition;
+  return testing::boundary(tag, BoundaryKind::wall);
 }
 
 /// A shock tube on [0,1]x[0,0.1], nx x 4 zones, walls all round (docs/verification.md §1
 /// for the default states).
 inline Problem shock_tube(int nx, double t_end, double rho_left = 1.0, double p_left = 1.0, double rho_right = 0.125,
                           double p_right = 0.1, double gamma = 1.4) {
-  Problem problem;
+  Problem problem = testing::shock_tube(nx, 4, t_end, {rho_left, p_left, rho_right, p_right}, gamma);
   problem.name = "shock_tube";
-  problem.mesh = build_mesh(meshgen::rectangle(0.0, 1.0, 0.0, 0.1, nx, 4));
-  Material material;
-  material.name = "gas";
-  material.eos = IdealGas{gamma};
-  problem.materials.push_back(material);
-  RegionSetup gas;
-  gas.region = "domain";
-  gas.material = "gas";
-  gas.density = [=](double x, double) { return x < 0.5 ? rho_left : rho_right; };
-  gas.pressure = [=](double x, double) { return x < 0.5 ? p_left : p_right; };
-  problem.regions.push_back(std::move(gas));
-  for (const char* tag : {"left", "right", "bottom", "top"}) problem.boundaries.push_back(wall(tag));
   problem.options.hourglass_coefficient = 0;
-  problem.t_end = t_end;
   return problem;
 }
 
-/// True if two spans hold the same bits (so -0.0 != 0.0 and NaN == NaN of the same payload).
-inline bool bitwise_equal(std::span<const double> a, std::span<const double> b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size_bytes()) == 0);
-}
+using testing::bitwise_equal;
 
 /// Asserts that two simulations hold bitwise the same state, time, cycle and dt.
 inline void expect_same_state(const Simulation& a, const Simulation& b) {

@@ -17,12 +17,15 @@
 #include <thread>
 #include <vector>
 
+#include "support/files.hpp"
+#include "support/stagger_binary.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
 const fs::path kCases = fs::path(STAGGER_SOURCE_DIR) / "tests" / "bad_inputs";
-const fs::path kBinary = fs::path(STAGGER_BINARY_DIR) / "bin" / "stagger";
+const fs::path kBinary = stagger::testing::stagger_binary();
 const fs::path kWork = fs::path(STAGGER_BINARY_DIR) / "tests" / "bad_inputs_work";
 constexpr double kTimeoutSeconds = 60;
 
@@ -83,10 +86,7 @@ struct Outcome {
   std::string out, err;
 };
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using stagger::testing::read_text;
 
 /// Runs the stagger binary in `directory` with a time limit; stdout and stderr to files.
 Outcome run_stagger(const std::vector<std::string>& args, const fs::path& directory, const fs::path& log_stem) {
@@ -121,8 +121,8 @@ Outcome run_stagger(const std::vector<std::string>& args, const fs::path& direct
   }
   if (WIFEXITED(status)) outcome.exit_code = WEXITSTATUS(status);
   if (WIFSIGNALED(status)) outcome.signal = WTERMSIG(status);
-  outcome.out = slurp(out_path);
-  outcome.err = slurp(err_path);
+  outcome.out = read_text(out_path);
+  outcome.err = read_text(err_path);
   return outcome;
 }
 
@@ -193,7 +193,7 @@ TEST_P(BadInput, FailsCleanlyWithTheExpectedMessage) {
     if (c.mode == "run") {
       // The run stopped mid-way: summary.json holds the error, and a final dump exists.
       const fs::path out = work / "out_run";
-      const std::string summary = slurp(out / "summary.json");
+      const std::string summary = read_text(out / "summary.json");
       EXPECT_NE(summary.find("\"status\": \"cycle"), std::string::npos) << summary;
       EXPECT_NE(summary.find("a zone tangled"), std::string::npos) << summary;
       bool pvd = false;

@@ -15,50 +15,25 @@
 #include <string>
 #include <thread>
 
+#include "support/files.hpp"
+#include "support/scene_toml.hpp"
+#include "support/scratch_directory.hpp"
+#include "support/stagger_binary.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int status = -1;
-  std::string out, err;
-};
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using Result = stagger::testing::CommandResult;
+using stagger::testing::read_text;
+using stagger::testing::stagger_binary;
+namespace toml = stagger::testing::toml;
 
 class Cli : public ::testing::Test {
  protected:
-  void SetUp() override {
-    // The pid keeps concurrent test runs (several build trees on one machine) apart.
-    directory_ = fs::temp_directory_path() /
-                 (std::string("stagger_cli_test_") + ::testing::UnitTest::GetInstance()->current_test_info()->name() +
-                  "_" + std::to_string(::getpid()));
-    fs::remove_all(directory_);
-    fs::create_directories(directory_);
-  }
-  void TearDown() override { fs::remove_all(directory_); }
-
   // Runs `stagger ARGS` with stdout and stderr captured in files.
-  Result stagger(const std::string& args) const {
-    const fs::path out = directory_ / "stdout.txt", err = directory_ / "stderr.txt";
-    const std::string command = std::string(STAGGER_BINARY_DIR) + "/bin/stagger " + args + " >" + out.string() + " 2>" +
-                                err.string() + " </dev/null";
-    const int raw = std::system(command.c_str());
-    Result result;
-    result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    result.out = read_text(out);
-    result.err = read_text(err);
-    return result;
-  }
-  std::string write(const std::string& name, const std::string& text) const {
-    std::ofstream(directory_ / name) << text;
-    return (directory_ / name).string();
-  }
+  Result stagger(const std::string& args) const { return stagger::testing::run_stagger(args, directory_); }
+  std::string write(const std::string& name, const std::string& text) const { return scratch_.write(name, text); }
   static void expect_one_line_error(const Result& result) {
     EXPECT_EQ(result.status, 1);
     EXPECT_EQ(result.err.rfind("stagger: error: ", 0), 0u) << result.err;
@@ -66,34 +41,15 @@ class Cli : public ::testing::Test {
     EXPECT_EQ(result.err.find('\n'), result.err.size() - 1) << "exactly one line: " << result.err;
   }
 
-  fs::path directory_;
+  const stagger::testing::ScratchDirectory scratch_{"cli_test_" + stagger::testing::current_test_name()};
+  const fs::path directory_ = scratch_.path();
 };
 
-const char* const tiny_scene = R"([scene]
-name = "tiny"
-[time]
-end = 0.1
-[mesh]
-generator = "rectangle"
-x = [0.0, 1.0]
-y = [0.0, 0.1]
-nx = 10
-ny = 1
-[[material]]
-name = "gas"
-eos = "ideal_gas"
-gamma = 1.4
-[[region]]
-name = "domain"
-material = "gas"
-density = "x < 0.5 ? 1.0 : 0.125"
-pressure = "x < 0.5 ? 1.0 : 0.1"
-[[boundary]]
-tags = ["left", "right", "bottom", "top"]
-type = "wall"
-[output]
-dump_interval = 0.05
-)";
+// Sod's tube on 10 x 1 zones, dumped every 0.05.
+const std::string tiny_scene = "[scene]\nname = \"tiny\"\n" + toml::time("0.1") +
+                               toml::rectangle("[0.0, 1.0]", "[0.0, 0.1]", 10, 1) + toml::ideal_gas() +
+                               toml::gas_region(R"("x < 0.5 ? 1.0 : 0.125")", R"("x < 0.5 ? 1.0 : 0.1")") +
+                               toml::walls() + "[output]\ndump_interval = 0.05\n";
 
 TEST_F(Cli, HelpDescribesCommandsAndTheOutputContract) {
   const Result result = stagger("--help");
@@ -242,8 +198,8 @@ TEST_F(Cli, MeshOutputIsAtomicAndAFullDiskIsAnError) {
     const fs::path target = directory_ / name;
     // A 4 KiB file-size limit: the write fails as on a full disk (stagger ignores SIGXFSZ).
     std::ofstream(target) << "previous";
-    const std::string limited = "sh -c 'ulimit -f 4; exec " + std::string(STAGGER_BINARY_DIR) + "/bin/stagger mesh " +
-                                geo + " --set nx=400 -o " + target.string() + "'";
+    const std::string limited =
+        "sh -c 'ulimit -f 4; exec " + stagger_binary() + " mesh " + geo + " --set nx=400 -o " + target.string() + "'";
     const int raw = std::system(
         (limited + " >" + (directory_ / "o.txt").string() + " 2>" + (directory_ / "e.txt").string()).c_str());
     const std::string err = read_text(directory_ / "e.txt");
@@ -301,33 +257,9 @@ TEST_F(Cli, SetUpsThatMakeNoSenseGetAWarning) {
 }
 
 TEST_F(Cli, StrengthUnitSlipsGetAWarning) {
-  const std::string solid = R"([time]
-end = 1e-5
-[mesh]
-generator = "rectangle"
-x = [0.0, 0.01]
-y = [0.0, 0.001]
-nx = 10
-ny = 1
-[[material]]
-name = "copper"
-eos = "mie_gruneisen"
-rho0 = 8930.0
-a0 = 3940.0
-gamma0 = 2.0
-s = 1.49
-[material.strength]
-shear_modulus = SHEAR
-yield_stress = YIELD
-[[region]]
-name = "domain"
-material = "copper"
-density = 8930.0
-pressure = 0.0
-[[boundary]]
-tags = ["left", "right", "bottom", "top"]
-type = "wall"
-)";
+  const std::string solid = toml::time("1e-5") + toml::rectangle("[0.0, 0.01]", "[0.0, 0.001]", 10, 1) +
+                            toml::copper() + "[material.strength]\nshear_modulus = SHEAR\nyield_stress = YIELD\n" +
+                            toml::region("copper", "8930.0", "0.0") + toml::walls();
   auto scene = [&](const std::string& shear, const std::string& yield) {
     std::string text = solid;
     text.replace(text.find("SHEAR"), 5, shear);
@@ -378,8 +310,8 @@ TEST_F(Cli, ASecondRunIntoTheSameDirectoryFailsWhileTheFirstRuns) {
   text.replace(text.find("dump_interval = 0.05"), 20, "dump_interval = 0.0");
   const std::string path = write("long.toml", text);
   const fs::path out = directory_ / "shared";
-  const std::string first = std::string(STAGGER_BINARY_DIR) + "/bin/stagger run " + path + " --out " + out.string() +
-                            " --quiet --threads 1 >/dev/null 2>&1 & echo $!";
+  const std::string first =
+      stagger_binary() + " run " + path + " --out " + out.string() + " --quiet --threads 1 >/dev/null 2>&1 & echo $!";
   FILE* pipe = ::popen(first.c_str(), "r");
   ASSERT_NE(pipe, nullptr);
   long pid = 0;

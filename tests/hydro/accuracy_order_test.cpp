@@ -16,15 +16,12 @@ using namespace testing;
 namespace {
 double taylor_green_l2_velocity(int n, double t_end) {
   Problem p = gas_problem(rectangle_mesh(1.0, 1.0, n, n), 5.0 / 3.0, t_end);
-  RegionSetup r;
-  r.region = "domain";
-  r.material = "gas";
-  r.density = constant_field(1.0);
+  RegionSetup r = gas_region(constant_field(1.0));
   r.pressure = [](double x, double y) { return taylor_green_pressure(x, y); };
   r.velocity_x = [](double x, double y) { return taylor_green_velocity(x, y)[0]; };
   r.velocity_y = [](double x, double y) { return taylor_green_velocity(x, y)[1]; };
   p.regions.push_back(r);
-  walls(p, {"left", "right", "bottom", "top"});
+  walls(p);
   p.sources = taylor_green_sources();
   p.options.hourglass_coefficient = 0;
   p.options.q1 = p.options.q2 = 0;
@@ -50,10 +47,7 @@ TEST(SmoothFlow, TaylorGreenConvergesAtSecondOrder) {
 
 TEST(Noh, PolarMeshStaysRadiallySymmetricWithTheEdgeViscosity) {
   Problem p = gas_problem(build_mesh(meshgen::annulus_sector(0.0, 1.0, 0.0, M_PI / 2, 10, 50)), 5.0 / 3.0, 0.6);
-  RegionSetup r;
-  r.region = "domain";
-  r.material = "gas";
-  r.density = constant_field(1.0);
+  RegionSetup r = gas_region(constant_field(1.0));
   r.specific_internal_energy = constant_field(0.0);
   r.velocity_x = [](double x, double y) {
     const double d = std::hypot(x, y);

@@ -95,7 +95,7 @@ TEST(Conservation, ConstantStateAtRestStaysConstantInAWalledBox) {
   perturb_interior(mesh, 0.25, 0.25, 0.3, 3);
   Problem p = gas_problem(std::move(mesh), 1.4, 0.5);
   p.regions.push_back(uniform_region(2.0, 3.0));
-  walls(p, {"left", "right", "bottom", "top"});
+  walls(p);
   Simulation sim(std::move(p));
   sim.advance_to(0.5);
   for (double v : sim.velocity_x()) EXPECT_NEAR(v, 0.0, 1e-13);

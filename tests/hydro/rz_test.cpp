@@ -172,16 +172,7 @@ TEST(Rz, SphericalElasticPlasticShellKeepsEveryRingOnASphere) {
 // points of their ring on z = 0 (their planar mass from the corners' radial stretch).
 TEST(Rz, SphericalBlastKeepsSymmetryOnAnEqualAngleMesh) {
   constexpr int kAngles = 8, kRings = 24;
-  Problem p = gas_problem(build_mesh(meshgen::annulus_sector(0, 1.2, 0, M_PI / 2, kAngles, kRings)), 1.4, 0.1);
-  p.regions.push_back(uniform_region(1.0, 1e-10 * 0.4));
-  walls(p, {"start", "end", "outer"});
-  p.deposits.push_back({0.0, 0.0, 0.0677262});
-  p.options.geometry = CoordinateSystem::rz;
-  p.options.viscosity = Viscosity::edge;
-  p.options.hourglass = Hourglass::gamma;
-  p.options.hourglass_coefficient = 0.1;
-  p.options.cfl = 0.15;
-  Simulation sim(std::move(p));
+  Simulation sim(rz_blast_problem(kAngles, kRings));
   sim.advance_to(0.1);
   EXPECT_LT(std::abs(sim.energy().relative_error), 1e-12);
   // Zones are numbered ring by ring from the centre (kAngles per ring).

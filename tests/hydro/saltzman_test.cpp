@@ -15,10 +15,7 @@ Problem saltzman_problem(Hourglass kind, double q_hg) {
   Mesh mesh = rectangle_mesh(1.0, 0.1, 100, 10);
   for (Index p = 0; p < mesh.num_points(); ++p) mesh.x[p] += (0.1 - mesh.y[p]) * std::sin(M_PI * mesh.x[p]);
   Problem p = gas_problem(std::move(mesh), 5.0 / 3.0, 0.6);
-  RegionSetup r;
-  r.region = "domain";
-  r.material = "gas";
-  r.density = constant_field(1.0);
+  RegionSetup r = gas_region(constant_field(1.0));
   r.specific_internal_energy = constant_field(1e-10);
   p.regions.push_back(r);
   BoundaryCondition piston = boundary("left", BoundaryKind::velocity);

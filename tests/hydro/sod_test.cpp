@@ -11,23 +11,12 @@
 #include "stagger/error.hpp"
 #include "stagger/simulation.hpp"
 #include "stagger/verify.hpp"
+#include "support/sod_error.hpp"
 
 namespace stagger {
 
 namespace {
-double l1_density(const Simulation& sim) {
-  const ExactRiemann exact({1.0, 0.0, 1.0}, {0.125, 0.0, 0.1}, 1.4, 0.5);
-  const Mesh& m = sim.mesh();
-  double num = 0, den = 0;
-  for (Index z = 0; z < m.num_zones(); ++z) {
-    double cx = 0, cy = 0;
-    const Index b = m.zone_corner_begin[z], n = m.zone_corner_begin[z + 1] - b;
-    for (Index k = 0; k < n; ++k) cx += sim.x()[m.corner_point[b + k]] / n, cy += sim.y()[m.corner_point[b + k]] / n;
-    num += sim.zone_area()[z] * std::abs(sim.density()[z] - exact.sample(cx, sim.time()).density);
-    den += sim.zone_area()[z];
-  }
-  return num / den;
-}
+constexpr auto l1_density = testing::sod_l1_density;
 }  // namespace
 
 TEST(Sod, ReproducesThePrototypeAt400ZonesWithEnergyAtRoundOff) {

@@ -11,6 +11,8 @@
 #include <sstream>
 #include <string>
 
+#include "support/files.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -22,12 +24,7 @@ std::string quote(const fs::path& path) {
   return quoted;
 }
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using stagger::testing::read_text;
 
 // Runs `command` with stdout and stderr going to `log`; returns the exit status.
 int run(const std::string& command, const fs::path& log) {

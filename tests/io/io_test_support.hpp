@@ -1,6 +1,7 @@
 #pragma once
-// Shared helpers of the io tests: a tiny Sod-like problem, scratch directories, file
-// reading, and a minimal JSON parser (enough to check summary.json is well formed).
+// Helpers of the io tests: a tiny Sod-like problem and scratch directories (on the shared
+// builders of tests/support/), and a minimal JSON parser (enough to check summary.json is
+// well formed) and a .pvd reader.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -17,72 +18,28 @@
 #include <utility>
 #include <vector>
 
-#include "stagger/materials.hpp"
-#include "stagger/mesh.hpp"
-#include "stagger/meshgen.hpp"
 #include "stagger/problem.hpp"
+#include "support/files.hpp"
+#include "support/gas_problem.hpp"
+#include "support/scratch_directory.hpp"
 
 namespace stagger::io_test {
 
 /// Sod's shock tube on nx x 1 zones of [0,1] x [0,0.1] with walls all round.
 inline Problem sod_problem(int nx, double t_end) {
-  Problem problem;
+  Problem problem = testing::shock_tube(nx, 1, t_end);
   problem.name = "sod_io";
-  problem.mesh = build_mesh(meshgen::rectangle(0.0, 1.0, 0.0, 0.1, nx, 1));
-  Material gas;
-  gas.name = "gas";
-  gas.eos = IdealGas{1.4};
-  problem.materials.push_back(gas);
-  RegionSetup region;
-  region.region = "domain";
-  region.material = "gas";
-  region.density = [](double x, double) { return x < 0.5 ? 1.0 : 0.125; };
-  region.pressure = [](double x, double) { return x < 0.5 ? 1.0 : 0.1; };
-  problem.regions.push_back(region);
-  for (const char* tag : {"left", "right", "bottom", "top"}) {
-    BoundaryCondition wall;
-    wall.tag = tag;
-    wall.kind = BoundaryKind::wall;
-    problem.boundaries.push_back(wall);
-  }
-  problem.t_end = t_end;
   return problem;
 }
 
-/// A fresh, empty directory for one test, removed afterwards.
-class ScratchDirectory {
+/// A fresh, empty directory for one test (<temp>/stagger_io_<name>_<pid>), removed afterwards.
+class ScratchDirectory : public testing::ScratchDirectory {
  public:
-  explicit ScratchDirectory(const std::string& name)
-      : path_(std::filesystem::temp_directory_path() / ("stagger_io_" + name + "_" + std::to_string(::getpid()))) {
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
-  }
-  ~ScratchDirectory() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
-  }
-  ScratchDirectory(const ScratchDirectory&) = delete;
-  ScratchDirectory& operator=(const ScratchDirectory&) = delete;
-  const std::filesystem::path& path() const { return path_; }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  std::filesystem::path path_;
+  explicit ScratchDirectory(const std::string& name) : testing::ScratchDirectory("io_" + name) {}
 };
 
-inline std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
-inline std::vector<std::string> split_lines(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
+using testing::read_text;
+using testing::split_lines;
 
 /// Names of files in `directory` that look like leftovers of an interrupted atomic write.
 inline std::vector<std::string> temporary_files(const std::filesystem::path& directory) {

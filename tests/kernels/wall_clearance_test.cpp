@@ -5,13 +5,14 @@
 #include <unistd.h>
 
 #include <filesystem>
-#include <fstream>
 #include <random>
 #include <string>
 
 #include "hydro/boundary.hpp"
 #include "hydro/simulation_impl.hpp"
 #include "stagger/scene.hpp"
+#include "support/files.hpp"
+#include "support/scene_toml.hpp"
 
 namespace stagger {
 namespace {
@@ -65,33 +66,11 @@ TEST(WallClearance, ClosedBoxFindsWhatTheFullCheckFinds) {
 TEST(WallClearance, OpenWallEndsFindWhatTheFullCheckFinds) {
   // A wall along y = 0 only: rays continue it beyond both ends.
   const fs::path dir = fs::temp_directory_path() / ("stagger_clearance_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  std::ofstream(dir / "open.toml") << R"toml(
-[time]
-end = 1.0
-[mesh]
-generator = "rectangle"
-x = [0.0, 1.0]
-y = [0.0, 1.0]
-nx = 12
-ny = 12
-[[material]]
-name = "gas"
-eos = "ideal_gas"
-gamma = 1.4
-[[region]]
-name = "domain"
-material = "gas"
-density = 1.0
-pressure = 1.0
-[[boundary]]
-tag = "bottom"
-type = "wall"
-[[boundary]]
-tags = ["left", "right", "top"]
-type = "free"
-)toml";
-  Simulation::Impl s(load_scene((dir / "open.toml").string()).problem);
+  namespace toml = testing::toml;
+  const std::string path = testing::write_text(
+      dir / "open.toml", toml::time("1.0") + toml::rectangle("[0.0, 1.0]", "[0.0, 1.0]", 12, 12) + toml::ideal_gas() +
+                             toml::gas_region() + toml::bottom_wall_free_elsewhere());
+  Simulation::Impl s(load_scene(path).problem);
   fs::remove_all(dir);
   ASSERT_EQ(s.wall_rays.size(), 2u);
   const int crossings = compare_checks(s, 1.0 / 12, 2);

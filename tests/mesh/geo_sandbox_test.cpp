@@ -13,6 +13,10 @@
 #include "mesh_checks.hpp"
 #include "stagger/meshgen.hpp"
 #include "stagger/scene.hpp"
+#include "support/files.hpp"
+#include "support/scene_toml.hpp"
+#include "support/scratch_directory.hpp"
+#include "support/stagger_binary.hpp"
 
 namespace stagger {
 namespace {
@@ -20,6 +24,7 @@ namespace {
 namespace fs = std::filesystem;
 using testing::expect_consistent;
 using testing::expect_error;
+namespace toml = testing::toml;
 
 const char* const kSquare = R"(Point(1) = {0, 0, 0, 0.25}; Point(2) = {1, 0, 0, 0.25};
 Point(3) = {1, 1, 0, 0.25}; Point(4) = {0, 1, 0, 0.25};
@@ -30,20 +35,11 @@ Physical Surface("domain") = {1}; Physical Curve("wall") = {1, 2, 3, 4};
 
 class GeoSandbox : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    // Under the build tree, one directory per test: parallel sessions never share it.
-    directory_ = fs::path(STAGGER_BINARY_DIR) / "test_geo_sandbox" / info->name();
-    fs::remove_all(directory_);
-    fs::create_directories(directory_);
-  }
-  void TearDown() override { fs::remove_all(directory_); }
-  std::string write(const std::string& name, const std::string& text) const {
-    fs::create_directories((directory_ / name).parent_path());
-    std::ofstream(directory_ / name) << text;
-    return (directory_ / name).string();
-  }
-  fs::path directory_;
+  std::string write(const std::string& name, const std::string& text) const { return scratch_.write(name, text); }
+  // Under the build tree, one directory per test: parallel sessions never share it.
+  const testing::ScratchDirectory scratch_{fs::path(STAGGER_BINARY_DIR) / "test_geo_sandbox" /
+                                           testing::current_test_name()};
+  const fs::path directory_ = scratch_.path();
 };
 
 // Whether gmsh's library is mapped into this process.
@@ -204,32 +200,15 @@ TEST_F(GeoSandbox, MeshingLeavesOpenMpAsTheUserSetIt) {
 TEST_F(GeoSandbox, ThreadsTwoOnAGeoSceneRunsOnTwoThreads) {
   // The real command line: `stagger run --threads 2` on a .geo scene reports 2 threads.
   write("square.geo", kSquare);
-  const std::string scene = write("scene.toml", R"([time]
-end = 0.001
-[mesh]
-file = "square.geo"
-[[material]]
-name = "gas"
-eos = "ideal_gas"
-gamma = 1.4
-[[region]]
-name = "domain"
-material = "gas"
-density = 1.0
-pressure = 1.0
-[[boundary]]
-tags = ["wall"]
-type = "wall"
-)");
+  const std::string scene =
+      write("scene.toml", toml::time("0.001") + "[mesh]\nfile = \"square.geo\"\n" + toml::ideal_gas() +
+                              toml::gas_region() + toml::walls(R"(["wall"])"));
   const fs::path out = directory_ / "out";
-  const std::string command = std::string(STAGGER_BINARY_DIR) + "/bin/stagger run " + scene +
-                              " --threads 2 --quiet --out " + out.string() + " >" + (directory_ / "log.txt").string() +
-                              " 2>&1";
+  const std::string command = testing::stagger_binary() + " run " + scene + " --threads 2 --quiet --out " +
+                              out.string() + " >" + (directory_ / "log.txt").string() + " 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0);
-  std::ifstream in(out / "summary.json");
-  std::stringstream text;
-  text << in.rdbuf();
-  EXPECT_NE(text.str().find("\"threads\": 2"), std::string::npos) << text.str();
+  const std::string text = testing::read_text(out / "summary.json");
+  EXPECT_NE(text.find("\"threads\": 2"), std::string::npos) << text;
 }
 
 // --- The parameter wrapper --------------------------------------------------------------
@@ -419,28 +398,10 @@ TEST(Overlaps, ATransformThatFoldsAGeneratedMeshIsAnError) {
   // reorienting it, leaving overlapping zones.
   const fs::path dir = fs::path(STAGGER_BINARY_DIR) / "test_geo_sandbox" / "fold";
   fs::create_directories(dir);
-  std::ofstream(dir / "fold.toml") << R"([time]
-end = 0.01
-[mesh]
-generator = "rectangle"
-x = [0, 1]
-y = [0, 1]
-nx = 4
-ny = 2
-transform.x = "x > 0.6 ? 1.2 - x : x"
-[[material]]
-name = "gas"
-eos = "ideal_gas"
-gamma = 1.4
-[[region]]
-name = "domain"
-material = "gas"
-density = 1.0
-pressure = 1.0
-[[boundary]]
-tags = ["left", "right", "bottom", "top"]
-type = "wall"
-)";
+  // Line 9: the transform.
+  testing::write_text(dir / "fold.toml", toml::time("0.01") + toml::rectangle("[0, 1]", "[0, 1]", 4, 2) +
+                                             "transform.x = \"x > 0.6 ? 1.2 - x : x\"\n" + toml::ideal_gas() +
+                                             toml::gas_region() + toml::walls());
   expect_error([&] { load_scene((dir / "fold.toml").string()); },
                {"fold.toml:9: key 'mesh.transform'", "inverted", "folds"});
   // Without the check the trusted path still refuses a partial reversal.

@@ -14,35 +14,19 @@
 #include "stagger/error.hpp"
 #include "stagger/option_table.hpp"
 #include "stagger/scene.hpp"
+#include "support/scene_toml.hpp"
+#include "support/scratch_directory.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-const char* const small_scene =
-    R"([time]
-end = 0.1
-[mesh]
-generator = "rectangle"
-x = [0.0, 1.0]
-y = [0.0, 0.1]
-nx = 10
-ny = 2
-[[material]]
-name = "gas"
-eos = "ideal_gas"
-gamma = 1.4
-[material.strength]
-shear_modulus = 2.0
-yield_stress = 3.0
-[[material]]
-name = "copper"
-eos = "mie_gruneisen"
-rho0 = 8930.0
-a0 = 3940.0
-gamma0 = 2.0
-s = 1.49
-[[material]]
+namespace toml = stagger::testing::toml;
+
+// Every kind of material (the gas with strength, so that its options are read too) and a deposit.
+const std::string small_scene = toml::time("0.1") + toml::rectangle("[0.0, 1.0]", "[0.0, 0.1]", 10, 2) +
+                                toml::ideal_gas() + "[material.strength]\nshear_modulus = 2.0\nyield_stress = 3.0\n" +
+                                toml::copper() + R"([[material]]
 name = "explosive"
 eos = "jwl"
 A = 5.242
@@ -51,15 +35,8 @@ R1 = 4.2
 R2 = 1.1
 omega = 0.34
 rho0 = 1.712
-[[region]]
-name = "domain"
-material = "gas"
-density = 1.0
-pressure = 1.0
-[[boundary]]
-tags = ["left", "right", "bottom", "top"]
-type = "wall"
-[[deposit]]
+)" + toml::gas_region() + toml::walls() +
+                                R"([[deposit]]
 x = 0.0
 y = 0.0
 energy = 0.5
@@ -67,14 +44,7 @@ energy = 0.5
 
 class OptionTables : public ::testing::Test {
  protected:
-  void SetUp() override {
-    path_ = (fs::temp_directory_path() /
-             ("stagger_option_table_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-              ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".toml"))
-                .string();
-    std::ofstream(path_) << small_scene;
-  }
-  void TearDown() override { fs::remove(path_); }
+  void SetUp() override { path_ = scratch_.write("scene.toml", small_scene); }
 
   stagger::Scene load(const std::string& key, const std::string& value) const {
     return stagger::load_scene(path_, {{key, value}});
@@ -88,6 +58,9 @@ class OptionTables : public ::testing::Test {
     return "(no error)";
   }
 
+  const stagger::testing::ScratchDirectory scratch_{"option_table_test_" +
+                                                    std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+                                                    "_" + stagger::testing::current_test_name()};
   std::string path_;
 };
 

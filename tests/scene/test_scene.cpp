@@ -10,49 +10,25 @@
 
 #include "stagger/error.hpp"
 #include "stagger/scene.hpp"
+#include "support/scene_toml.hpp"
+#include "support/scratch_directory.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-// A tiny valid scene; line numbers below refer to this text.
-const char* const base_scene =
-    R"([time]
-end = 0.1
-[mesh]
-generator = "rectangle"
-x = [0.0, 1.0]
-y = [0.0, 0.1]
-nx = 10
-ny = 2
-[[material]]
-name = "gas"
-eos = "ideal_gas"
-gamma = 1.4
-[[region]]
-name = "domain"
-material = "gas"
-density = 1.0
-pressure = 1.0
-[[boundary]]
-tags = ["left", "right", "bottom", "top"]
-type = "wall"
-)";
+namespace toml = stagger::testing::toml;
+
+// A tiny valid scene; line numbers below refer to this text: 1-2 [time] (2: end), 3-8 [mesh]
+// (4: generator, 7: nx), 9-12 [[material]], 13-17 [[region]] (14: name, 15: material,
+// 16: density, 17: pressure), 18-20 [[boundary]] (19: tags, 20: type).
+const std::string base_scene = toml::time("0.1") + toml::rectangle("[0.0, 1.0]", "[0.0, 0.1]", 10, 2) +
+                               toml::ideal_gas() + toml::gas_region() + toml::walls();
 
 class SceneFile : public ::testing::Test {
  protected:
-  void SetUp() override {
-    directory_ = fs::temp_directory_path() /
-                 ("stagger_scene_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-                  ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(directory_);
-  }
-  void TearDown() override { fs::remove_all(directory_); }
-
   std::string write(const std::string& text, const std::string& name = "scene.toml") {
-    const fs::path path = directory_ / name;
-    std::ofstream(path) << text;
-    return path.string();
+    return scratch_.write(name, text);
   }
   // Replaces the first occurrence of `from` in the base scene.
   static std::string edit(const std::string& from, const std::string& to) {
@@ -75,7 +51,10 @@ class SceneFile : public ::testing::Test {
   }
   std::string located(int line) const { return (directory_ / "scene.toml").string() + ":" + std::to_string(line); }
 
-  fs::path directory_;
+  const stagger::testing::ScratchDirectory scratch_{"scene_test_" +
+                                                    std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+                                                    "_" + stagger::testing::current_test_name()};
+  const fs::path directory_ = scratch_.path();
 };
 
 #define EXPECT_CONTAINS(text, part) EXPECT_NE(std::string(text).find(part), std::string::npos) << (text)

@@ -15,6 +15,7 @@
 #include "stagger/scene.hpp"
 #include "stagger/simulation.hpp"
 #include "stagger/verify.hpp"
+#include "support/named_values.hpp"
 
 namespace stagger {
 namespace {
@@ -23,12 +24,7 @@ std::string scene_path(const char* name) {
   return std::string(STAGGER_SOURCE_DIR) + "/apps/scenes/" + name;
 }
 
-double value_of(const NamedValues& values, const std::string& name) {
-  for (const auto& [key, value] : values)
-    if (key == name) return value;
-  ADD_FAILURE() << "no value named " << name;
-  return NAN;
-}
+using testing::value_of;
 
 // ---- accuracy (paper 5.3) ----
 

@@ -5,13 +5,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "stagger/scene.hpp"
 #include "stagger/simulation.hpp"
+#include "support/files.hpp"
+#include "support/scene_toml.hpp"
 
 namespace stagger {
 namespace {
@@ -29,46 +30,14 @@ struct Compression {
 // already set up inside the bar: v_x = u (1 - x) between the piston (x = 0, u = 20 m/s) and
 // the wall (x = 1). With a linear velocity every zone deforms alike, the stress is uniform, the
 // interior forces cancel and every point keeps its velocity: uniaxial strain at the rate u / L(t).
-constexpr const char* kScene = R"toml(
-[time]
-end = 500e-6
-[mesh]
-generator = "rectangle"
-x = [0.0, 1.0]
-y = [0.0, 0.1]
-nx = 10
-ny = 2
-[[material]]
-name = "copper"
-eos = "mie_gruneisen"
-rho0 = 8930.0
-a0 = 3940.0
-gamma0 = 2.0
-s = 1.49
-[material.strength]
-shear_modulus = 45e9
-yield_stress = 90e6
-[[region]]
-name = "domain"
-material = "copper"
-density = 8930.0
-pressure = 1e5
-velocity = ["20 * (1 - x)", 0.0]
-[[boundary]]
-tag = "left"
-type = "velocity"
-velocity = [20.0, 0.0]
-[[boundary]]
-tags = ["right", "bottom", "top"]
-type = "wall"
-[numerics]
-cfl = 0.1
-)toml";
-
 std::string scene_file() {
-  const std::string path = testing::TempDir() + "hardening_compression.toml";
-  std::ofstream(path) << kScene;
-  return path;
+  namespace toml = testing::toml;
+  const std::string scene = toml::time("500e-6") + toml::rectangle("[0.0, 1.0]", "[0.0, 0.1]", 10, 2) + toml::copper() +
+                            "[material.strength]\nshear_modulus = 45e9\nyield_stress = 90e6\n" +
+                            toml::region("copper", "8930.0", "1e5") + "velocity = [\"20 * (1 - x)\", 0.0]\n" +
+                            "[[boundary]]\ntag = \"left\"\ntype = \"velocity\"\nvelocity = [20.0, 0.0]\n" +
+                            toml::walls(R"(["right", "bottom", "top"])") + "[numerics]\ncfl = 0.1\n";
+  return testing::write_text(::testing::TempDir() + "hardening_compression.toml", scene);
 }
 
 Compression compress(const std::string& hardening, double t_end) {

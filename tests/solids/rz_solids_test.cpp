@@ -13,16 +13,12 @@
 
 #include "stagger/scene.hpp"
 #include "stagger/simulation.hpp"
+#include "support/named_values.hpp"
 
 namespace stagger {
 namespace {
 
-double value_of(const NamedValues& values, const std::string& name) {
-  for (const auto& [key, value] : values)
-    if (key == name) return value;
-  ADD_FAILURE() << "no value named " << name;
-  return NAN;
-}
+using testing::value_of;
 
 Scene scene(const std::string& name, const std::vector<std::pair<std::string, std::string>>& overrides) {
   return load_scene(std::string(STAGGER_SOURCE_DIR) + "/apps/scenes/" + name + ".toml", overrides);

@@ -9,58 +9,42 @@
 #include "stagger/meshgen.hpp"
 #include "stagger/simulation.hpp"
 #include "stagger/verify.hpp"
+#include "support/copper.hpp"
+#include "support/gas_problem.hpp"
+#include "support/named_values.hpp"
 
 namespace stagger {
 
 namespace {
-double lookup(const NamedValues& values, const std::string& name) {
-  for (const auto& [key, value] : values)
-    if (key == name) return value;
-  ADD_FAILURE() << "no value named " << name;
-  return NAN;
-}
-
-Material copper() {
-  Material m;
-  m.name = "copper";
-  m.eos = MieGruneisen{8930.0, 3940.0, 2.0, 1.49};
-  m.strength = Strength{45e9, 90e6};
-  return m;
-}
-
-BoundaryCondition bc(const char* tag, BoundaryKind kind) {
-  BoundaryCondition b;
-  b.tag = tag;
-  b.kind = kind;
-  return b;
-}
+using testing::boundary;
+using testing::value_of;
 }  // namespace
 
 TEST(ElasticPlasticPiston, BothWavesWithinTwoPercentAndEnergyAtRoundOff) {
   Problem p;
   p.name = "piston";
   p.mesh = build_mesh(meshgen::rectangle(0, 1, 0, 0.1, 100, 5));
-  p.materials.push_back(copper());
+  p.materials.push_back(testing::piston_copper());
   RegionSetup r;
   r.region = "domain";
   r.material = "copper";
   r.density = constant_field(8930.0);
   r.pressure = constant_field(1e5);
   p.regions.push_back(r);
-  BoundaryCondition piston = bc("left", BoundaryKind::velocity);
+  BoundaryCondition piston = boundary("left", BoundaryKind::velocity);
   piston.velocity_x = constant_in_time(20.0);
-  p.boundaries = {piston, bc("right", BoundaryKind::wall), bc("bottom", BoundaryKind::wall),
-                  bc("top", BoundaryKind::wall)};
+  p.boundaries = {piston, boundary("right", BoundaryKind::wall), boundary("bottom", BoundaryKind::wall),
+                  boundary("top", BoundaryKind::wall)};
   p.options.cfl = 0.1;
   p.t_end = 150e-6;
   Simulation sim(std::move(p));
   sim.advance_to(150e-6);
   NamedValues errors, diagnostics;
   piston_reference()(sim, errors, diagnostics);
-  const double elastic = lookup(diagnostics, "elastic_front"),
-               elastic_exact = lookup(diagnostics, "elastic_front_exact");
-  const double plastic = lookup(diagnostics, "plastic_front"),
-               plastic_exact = lookup(diagnostics, "plastic_front_exact");
+  const double elastic = value_of(diagnostics, "elastic_front"),
+               elastic_exact = value_of(diagnostics, "elastic_front_exact");
+  const double plastic = value_of(diagnostics, "plastic_front"),
+               plastic_exact = value_of(diagnostics, "plastic_front_exact");
   std::printf("piston 100x5: cycles %ld elastic %.4f (exact %.4f) plastic %.4f (exact %.4f) audit %.2e\n", sim.cycle(),
               elastic, elastic_exact, plastic, plastic_exact, sim.energy().relative_error);
   EXPECT_NEAR(elastic / elastic_exact, 1.0, 0.02);
@@ -90,8 +74,8 @@ TEST(BerylliumShell, StopsWithinAMillimetreOfHowellBallAndStaysSymmetric) {
   r.velocity_x = [](double x, double y) { return -417.1 * 0.08 * x / (x * x + y * y); };
   r.velocity_y = [](double x, double y) { return -417.1 * 0.08 * y / (x * x + y * y); };
   p.regions.push_back(r);
-  p.boundaries = {bc("start", BoundaryKind::wall), bc("end", BoundaryKind::wall), bc("inner", BoundaryKind::free),
-                  bc("outer", BoundaryKind::free)};
+  p.boundaries = {boundary("start", BoundaryKind::wall), boundary("end", BoundaryKind::wall),
+                  boundary("inner", BoundaryKind::free), boundary("outer", BoundaryKind::free)};
   p.options.cfl = 0.1;
   // The shell's own numerics (apps/scenes/be_shell.toml): the bulk q and the gamma force keep
   // its rotational symmetry at round-off (docs/algorithm.md §4.2).
@@ -103,10 +87,10 @@ TEST(BerylliumShell, StopsWithinAMillimetreOfHowellBallAndStaysSymmetric) {
   sim.advance_to(130e-6);
   NamedValues errors, diagnostics;
   be_shell_reference()(sim, errors, diagnostics);
-  const double inner = lookup(diagnostics, "inner_radius"), exact = lookup(diagnostics, "inner_radius_exact");
-  const double asym = lookup(diagnostics, "asymmetry");
+  const double inner = value_of(diagnostics, "inner_radius"), exact = value_of(diagnostics, "inner_radius_exact");
+  const double asym = value_of(diagnostics, "asymmetry");
   std::printf("be shell 20x16: cycles %ld inner %.5f mm (exact %.5f) outer %.5f mm asymmetry %.2e audit %.2e\n",
-              sim.cycle(), inner * 1e3, exact * 1e3, lookup(diagnostics, "outer_radius") * 1e3, asym,
+              sim.cycle(), inner * 1e3, exact * 1e3, value_of(diagnostics, "outer_radius") * 1e3, asym,
               sim.energy().relative_error);
   EXPECT_NEAR(inner, exact, 1e-3);
   EXPECT_LT(asym, 1e-12);
@@ -143,9 +127,9 @@ TEST(BerylliumShell, GmshSceneStopsWithinAMillimetreAndStaysSymmetricToRoundOff)
   sim.advance_to(130e-6);
   NamedValues errors, diagnostics;
   reference(sim, errors, diagnostics);
-  const double inner = lookup(diagnostics, "inner_radius"), exact = lookup(diagnostics, "inner_radius_exact");
-  const double outer = lookup(diagnostics, "outer_radius"), outer_exact = lookup(diagnostics, "outer_radius_exact");
-  const double asym = lookup(diagnostics, "asymmetry");
+  const double inner = value_of(diagnostics, "inner_radius"), exact = value_of(diagnostics, "inner_radius_exact");
+  const double outer = value_of(diagnostics, "outer_radius"), outer_exact = value_of(diagnostics, "outer_radius_exact");
+  const double asym = value_of(diagnostics, "asymmetry");
   std::printf(
       "[ numbers  ] be_shell.toml 20x16 (gmsh): cycles %ld inner %.5f mm (exact %.5f) outer %.5f mm (exact %.5f) "
       "asymmetry %.2e audit %.2e\n",
@@ -155,7 +139,7 @@ TEST(BerylliumShell, GmshSceneStopsWithinAMillimetreAndStaysSymmetricToRoundOff)
   EXPECT_LT(asym, 1e-12);
   EXPECT_LT(std::abs(sim.energy().relative_error), 1e-12);
   // The kinetic energy has become plastic heat: what is left is the elastic ringing.
-  EXPECT_LT(lookup(diagnostics, "kinetic_energy"), 1e-3 * sim.energy().initial);
+  EXPECT_LT(value_of(diagnostics, "kinetic_energy"), 1e-3 * sim.energy().initial);
 }
 
 // Behind the plastic shock the exact S_xx is -2Y/3 = -60 MPa. The scheme's post-shock density
@@ -172,7 +156,7 @@ TEST(ElasticPlasticPiston, PlasticPlateauStressConvergesToTheYieldValue) {
     sim.advance_to(150e-6);
     NamedValues errors, diagnostics;
     reference(sim, errors, diagnostics);
-    const double plastic_exact = lookup(diagnostics, "plastic_front_exact");
+    const double plastic_exact = value_of(diagnostics, "plastic_front_exact");
     const auto cx = zone_centres(sim.mesh(), sim.x(), sim.y())[0];
     double lo = 1e300, hi = -1e300, deviation = 0, area = 0;
     int off = 0, plateau = 0;
@@ -188,7 +172,7 @@ TEST(ElasticPlasticPiston, PlasticPlateauStressConvergesToTheYieldValue) {
     std::printf(
         "[ numbers  ] piston %dx5: plateau S_xx in [%.2f, %.2f] MPa, mean |S_xx + 60 MPa| %.3f MPa, %d of %d "
         "zones more than 1 MPa off; L1_deviatoric_stress_xx %.3e\n",
-        nx, lo / 1e6, hi / 1e6, deviation / area / 1e6, off, plateau, lookup(errors, "L1_deviatoric_stress_xx"));
+        nx, lo / 1e6, hi / 1e6, deviation / area / 1e6, off, plateau, value_of(errors, "L1_deviatoric_stress_xx"));
     EXPECT_GE(lo, -60e6 * (1 + 1e-9));  // radial return: never beyond the yield surface
   }
   EXPECT_LT(mean_deviation[1], 0.5 * mean_deviation[0]);

@@ -9,16 +9,12 @@
 
 #include "stagger/scene.hpp"
 #include "stagger/simulation.hpp"
+#include "support/named_values.hpp"
 
 namespace stagger {
 namespace {
 
-double value_of(const NamedValues& values, const std::string& name) {
-  for (const auto& [key, value] : values)
-    if (key == name) return value;
-  ADD_FAILURE() << "no value named " << name;
-  return NAN;
-}
+using testing::value_of;
 
 }  // namespace
 

@@ -9,33 +9,22 @@
 #include "stagger/meshgen.hpp"
 #include "stagger/simulation.hpp"
 #include "stagger/verify.hpp"
+#include "support/gas_problem.hpp"
+#include "support/named_values.hpp"
 
 namespace {
 
-std::map<std::string, double> as_map(const stagger::NamedValues& values) {
-  return {values.begin(), values.end()};
-}
+using stagger::testing::as_map;
 
 /// A gas on the rectangle [x0,x1]x[y0,y1] (nx x ny zones), free boundaries (the initial
 /// velocities stay as given).
 stagger::Problem gas_box(double x1, double y1, int nx, int ny, stagger::RegionSetup setup, double gamma = 1.4) {
-  stagger::Problem problem;
-  problem.name = "verify_gas";
-  problem.mesh = stagger::build_mesh(stagger::meshgen::rectangle(0.0, x1, 0.0, y1, nx, ny));
-  stagger::Material gas;
-  gas.name = "gas";
-  gas.eos = stagger::IdealGas{gamma};
-  problem.materials.push_back(gas);
+  namespace support = stagger::testing;
+  stagger::Problem problem = support::gas_problem(support::rectangle_mesh(x1, y1, nx, ny), gamma, 1.0, "verify_gas");
   setup.region = "domain";
   setup.material = "gas";
   problem.regions.push_back(setup);
-  for (const char* tag : {"left", "right", "bottom", "top"}) {
-    stagger::BoundaryCondition boundary;
-    boundary.tag = tag;
-    boundary.kind = stagger::BoundaryKind::free;
-    problem.boundaries.push_back(boundary);
-  }
-  problem.t_end = 1.0;
+  support::boundaries(problem, support::kBoxSides, stagger::BoundaryKind::free);
   return problem;
 }
 

@@ -9,12 +9,11 @@
 #include "stagger/meshgen.hpp"
 #include "stagger/simulation.hpp"
 #include "stagger/verify.hpp"
+#include "support/named_values.hpp"
 
 namespace {
 
-std::map<std::string, double> as_map(const stagger::NamedValues& values) {
-  return {values.begin(), values.end()};
-}
+using stagger::testing::as_map;
 
 stagger::Problem solid_problem(stagger::PolygonSoup soup, stagger::MieGruneisen eos, stagger::Strength strength,
                                stagger::RegionSetup setup, stagger::BoundaryKind kind) {

@@ -4,59 +4,33 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include "stagger/run.hpp"
 #include "stagger/scene.hpp"
-#include "stagger/simulation.hpp"
+#include "support/files.hpp"
+#include "support/run_scene.hpp"
+#include "support/scene_toml.hpp"
 
 namespace stagger {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using testing::read_text;
 
 // One zone of cold gas (no pressure: the points coast) on a wall along y = 0, free elsewhere.
 // The bottom-right point slides along the wall past the wall's initial end; with
 // `fall` > 0 the top-right point also falls and, beyond that end, meets the wall's line
 // without any zone folding: the free surface rolling onto the wall of a Taylor bar.
-constexpr const char* kScene = R"toml(
-[time]
-end = 1.0
-[mesh]
-generator = "rectangle"
-x = [0.0, 1.0]
-y = [0.0, 1.0]
-nx = 1
-ny = 1
-[[material]]
-name = "gas"
-eos = "ideal_gas"
-gamma = 1.4
-[[region]]
-name = "domain"
-material = "gas"
-density = 1.0
-pressure = 0.0
-velocity = ["x * (1 + y)", "-fall * x * y"]
-[[boundary]]
-tag = "bottom"
-type = "wall"
-[[boundary]]
-tags = ["left", "right", "top"]
-type = "free"
-[output]
-dump_interval = 0.1
-)toml";
+std::string fold_scene(const std::string& fall) {
+  namespace toml = testing::toml;
+  return toml::time("1.0") + toml::rectangle("[0.0, 1.0]", "[0.0, 1.0]", 1, 1) + toml::ideal_gas() +
+         toml::gas_region("1.0", "0.0") + "velocity = [\"x * (1 + y)\", \"-" + fall + " * x * y\"]\n" +
+         toml::bottom_wall_free_elsewhere() + "[output]\ndump_interval = 0.1\n";
+}
 
 struct Fold {
   RunResult result;
@@ -66,20 +40,14 @@ struct Fold {
 
 Fold run_fold(const std::string& fall) {
   const fs::path dir = fs::temp_directory_path() / ("stagger_wall_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  std::string text = kScene;
-  text.replace(text.find("fall"), 4, fall);
-  std::ofstream(dir / "fold.toml") << text;
-  Scene scene = load_scene((dir / "fold.toml").string());
+  const std::string path = testing::write_text(dir / "fold.toml", fold_scene(fall));
   Fold fold;
   fold.out = dir / ("out_" + fall);
   fs::remove_all(fold.out);
-  scene.control.output_directory = fold.out.string();
-  scene.control.progress = false;
-  Simulation simulation(std::move(scene.problem));
-  fold.result = run(simulation, scene.control);
+  testing::SceneRun scene_run = testing::run_scene(load_scene(path), fold.out);
+  fold.result = std::move(scene_run.result);
   fold.lowest_y = 1e300;
-  for (const double y : simulation.y()) fold.lowest_y = std::min(fold.lowest_y, y);
+  for (const double y : scene_run.simulation.y()) fold.lowest_y = std::min(fold.lowest_y, y);
   return fold;
 }
 

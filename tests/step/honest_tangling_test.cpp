@@ -5,26 +5,21 @@
 #include <unistd.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include "hydro/kernels/zone_validity.hpp"
 #include "stagger/run.hpp"
 #include "stagger/scene.hpp"
 #include "stagger/simulation.hpp"
+#include "support/files.hpp"
+#include "support/run_scene.hpp"
 
 namespace stagger {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using testing::read_text;
 
 Index crossing_zones(const Simulation& simulation) {
   const Mesh& mesh = simulation.mesh();
@@ -55,10 +50,9 @@ void expect_honest_stop(bool check_corner_areas) {
                             {"numerics.check_corner_areas", check_corner_areas ? "true" : "false"},
                             {"time.end", "0.3"},
                             {"output.dump_interval", "0.01"}});
-  scene.control.output_directory = out.string();
-  scene.control.progress = false;
-  Simulation simulation(std::move(scene.problem));
-  const RunResult result = run(simulation, scene.control);
+  const testing::SceneRun scene_run = testing::run_scene(std::move(scene), out);
+  const Simulation& simulation = scene_run.simulation;
+  const RunResult& result = scene_run.result;
 
   ASSERT_FALSE(result.completed) << "the gamma-hourglass blast was expected to tangle";
   EXPECT_LT(simulation.time(), 0.3);
@@ -93,11 +87,10 @@ TEST(HonestTangling, CrossingZonesStopTheRunEvenWithTheCornerCheckOff) {
 TEST(HonestTangling, ACompletedRunHasNoLastGoodStateMark) {
   const fs::path out = fs::temp_directory_path() / ("stagger_tangle_ok_" + std::to_string(::getpid()));
   fs::remove_all(out);
-  Scene scene = load_scene(std::string(STAGGER_SOURCE_DIR) + "/apps/scenes/sod.toml", {{"time.end", "0.02"}});
-  scene.control.output_directory = out.string();
-  scene.control.progress = false;
-  Simulation simulation(std::move(scene.problem));
-  const RunResult result = run(simulation, scene.control);
+  const RunResult result =
+      testing::run_scene(load_scene(std::string(STAGGER_SOURCE_DIR) + "/apps/scenes/sod.toml", {{"time.end", "0.02"}}),
+                         out)
+          .result;
   ASSERT_TRUE(result.completed) << result.message;
   EXPECT_FALSE(result.summary.last_good_state);
   EXPECT_EQ(read_text(out / "summary.json").find("last_good_state"), std::string::npos);

@@ -7,8 +7,8 @@
 #include <string>
 
 #include "stagger/error.hpp"
-#include "stagger/meshgen.hpp"
 #include "stagger/simulation.hpp"
+#include "support/gas_problem.hpp"
 
 namespace stagger {
 
@@ -18,30 +18,15 @@ constexpr int kN = 16;
 constexpr double kAmbient = 1e-3;
 
 Problem deposit_problem(double radius) {
-  Problem p;
-  p.name = "deposit";
-  MeshBuildOptions options;
-  p.mesh = build_mesh(meshgen::rectangle(0, 1, 0, 1, kN, kN), options);
-  Material gas;
-  gas.name = "gas";
-  gas.eos = IdealGas{1.4};
-  p.materials.push_back(gas);
-  RegionSetup r;
-  r.region = "domain";
-  r.material = "gas";
-  r.density = constant_field(2.0);
+  Problem p = testing::gas_problem(testing::rectangle_mesh(1, 1, kN, kN), 1.4, 1, "deposit");
+  RegionSetup r = testing::gas_region(constant_field(2.0));
   r.specific_internal_energy = constant_field(kAmbient);
   p.regions.push_back(r);
-  for (const char* tag : {"left", "right", "bottom", "top"}) {
-    BoundaryCondition bc;
-    bc.tag = tag;
-    p.boundaries.push_back(bc);
-  }
+  testing::walls(p);
   EnergyDeposit d;
   d.energy = 0.5;
   d.radius = radius;
   p.deposits.push_back(d);
-  p.t_end = 1;
   return p;
 }
 

@@ -7,8 +7,8 @@
 #include <string>
 
 #include "stagger/error.hpp"
-#include "stagger/meshgen.hpp"
 #include "stagger/simulation.hpp"
+#include "support/gas_problem.hpp"
 
 namespace stagger {
 
@@ -21,19 +21,9 @@ namespace {
 // det(I + t L) = 1 - a^2 t^2. dt_max = 3/a makes the first try dt = 3/a, whose half-step
 // geometry at t = 1.5/a has area -1.25 times the initial one.
 Problem folding_problem(double a) {
-  Problem p;
-  p.name = "folding";
-  MeshBuildOptions options;
-  options.check_topology = false;
-  p.mesh = build_mesh(meshgen::rectangle(-0.5, 0.5, -0.5, 0.5, 2, 2), options);
-  Material gas;
-  gas.name = "gas";
-  gas.eos = IdealGas{1.4};
-  p.materials.push_back(gas);
-  RegionSetup r;
-  r.region = "domain";
-  r.material = "gas";
-  r.density = constant_field(1.0);
+  Problem p = testing::gas_problem(testing::rectangle_mesh(-0.5, 0.5, -0.5, 0.5, 2, 2, testing::unchecked()), 1.4,
+                                   100 / a, "folding");
+  RegionSetup r = testing::gas_region(constant_field(1.0));
   r.specific_internal_energy = constant_field(0.0);
   r.velocity_x = [a](double, double y) { return a * y; };
   r.velocity_y = [a](double x, double) { return a * x; };
@@ -42,7 +32,6 @@ Problem folding_problem(double a) {
   p.options.hourglass_coefficient = 0;
   p.options.max_retries = 8;
   p.options.dt_max = 3 / a;
-  p.t_end = 100 / a;
   return p;
 }
 

@@ -9,8 +9,8 @@
 #include <numbers>
 #include <vector>
 
-#include "stagger/meshgen.hpp"
 #include "stagger/simulation.hpp"
+#include "support/gas_problem.hpp"
 
 namespace stagger {
 
@@ -25,29 +25,13 @@ struct State {
 // tube: the left half compresses (q on, div v < 0), the right half expands. dt_max = h below
 // the CFL limit fixes dt = h; h = 2^-k and t_end = 2^-4 make every t exact.
 State run(double h) {
-  Problem p;
-  p.name = "temporal_order";
-  MeshBuildOptions options;
-  options.check_topology = false;
-  p.mesh = build_mesh(meshgen::rectangle(0, 1, 0, 0.0625, 32, 2), options);
-  Material gas;
-  gas.name = "gas";
-  gas.eos = IdealGas{1.4};
-  p.materials.push_back(gas);
-  RegionSetup r;
-  r.region = "domain";
-  r.material = "gas";
-  r.density = constant_field(1.0);
-  r.pressure = constant_field(1.0);
+  Problem p = testing::gas_problem(testing::rectangle_mesh(0, 1, 0, 0.0625, 32, 2, testing::unchecked()), 1.4, 0.0625,
+                                   "temporal_order");
+  RegionSetup r = testing::uniform_region(1.0, 1.0);
   r.velocity_x = [](double x, double) { return -0.5 * std::sin(std::numbers::pi * x); };
   p.regions.push_back(r);
-  for (const char* tag : {"left", "right", "bottom", "top"}) {
-    BoundaryCondition bc;
-    bc.tag = tag;
-    p.boundaries.push_back(bc);
-  }
+  testing::walls(p);
   p.options.dt_max = h;
-  p.t_end = 0.0625;
   Simulation sim(std::move(p));
   sim.advance_to(0.0625);
   State s;

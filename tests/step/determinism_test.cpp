@@ -5,39 +5,17 @@
 #include <cstring>
 #include <vector>
 
-#include "stagger/mesh.hpp"
-#include "stagger/meshgen.hpp"
 #include "stagger/simulation.hpp"
+#include "support/gas_problem.hpp"
 
 namespace stagger {
 
 namespace {
 std::vector<double> run_sedov(int threads) {
   omp_set_num_threads(threads);
-  Problem p;
-  p.name = "sedov";
-  MeshBuildOptions options;
-  options.check_topology = false;
-  p.mesh = build_mesh(meshgen::rectangle(0, 1.2, 0, 1.2, 70, 70), options);  // 4900 zones: threads engage (> 4096)
-  Material gas;
-  gas.name = "gas";
-  gas.eos = IdealGas{1.4};
-  p.materials.push_back(gas);
-  RegionSetup r;
-  r.region = "domain";
-  r.material = "gas";
-  r.density = constant_field(1.0);
-  r.specific_internal_energy = constant_field(1e-10);
-  p.regions.push_back(r);
-  for (const char* tag : {"left", "right", "bottom", "top"}) {
-    BoundaryCondition bc;
-    bc.tag = tag;
-    p.boundaries.push_back(bc);
-  }
-  p.deposits.push_back({0, 0, 0.244816});
+  Problem p = testing::sedov_quarter_problem(70, 1.0, testing::unchecked());  // 4900 zones: threads engage (> 4096)
   p.options.viscosity = Viscosity::edge;
   p.options.check_corner_areas = false;
-  p.t_end = 1.0;
   Simulation sim(std::move(p));
   for (int i = 0; i < 100; ++i) sim.step();
   std::vector<double> state;

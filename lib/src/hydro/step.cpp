@@ -19,6 +19,7 @@
 
 #include "hydro/boundary.hpp"
 #include "hydro/collective.hpp"
+#include "hydro/diagnostics.hpp"
 #include "hydro/exact_sum.hpp"
 #include "hydro/kernels/compensated.hpp"
 #include "hydro/kernels/geometry.hpp"
@@ -107,42 +108,7 @@ PointInput point_input(const Simulation::Impl& s) {
 
 }  // namespace
 
-std::string describe_zone(const Simulation::Impl& s, Index z) {
-  const Mesh& m = s.mesh();
-  std::ostringstream out;
-  // A distributed run names the zone and its points by their global (serial) numbers.
-  out << "zone " << (s.global_zone.empty() ? z : s.global_zone[z]) << " (region '" << m.region_names[m.zone_region[z]]
-      << "', points";
-  for (Index c = m.zone_corner_begin[z]; c < m.zone_corner_begin[z + 1]; ++c) {
-    const Index p = m.corner_point[c];
-    out << ' ' << (s.global_point.empty() ? p : s.global_point[p]) << " (" << s.x[p] << ", " << s.y[p] << ")";
-  }
-  out << ")";
-  return out.str();
-}
-
 namespace {
-std::string zone_failure_message(const Simulation::Impl& s, Index z, int kind, const std::string& what_step) {
-  std::ostringstream msg;
-  msg << "cycle " << s.cycle << ", t = " << s.t << ": " << describe_zone(s, z);
-  if (kind == kEosDomain) {
-    msg << " left the domain of its equation of state " << what_step << " (start-of-step density " << s.rho[z]
-        << ", specific internal energy " << s.e[z] << "): the zone is over-compressed or over-expanded";
-  } else if (kind == kNotFinite) {
-    msg << " has a non-finite state (NaN or Inf) " << what_step;
-  } else {
-    msg << " has a non-positive area " << what_step;
-  }
-  return msg.str();
-}
-
-// `code` is an agreed code (global zone numbers in a distributed run, whose owner words it).
-[[noreturn]] void throw_zone_failure(const Simulation::Impl& s, std::int64_t code, const std::string& what_step) {
-  const int kind = failure_kind(code);
-  const auto text = [&](Index z) { return zone_failure_message(s, z, kind, what_step); };
-  throw Error(s.collective ? s.collective->zone_text(s, failure_zone(code), text) : text(failure_zone(code)));
-}
-
 // Distributed runs: the lowest failure and the smallest dt over the ranks (serial: as is).
 std::int64_t agreed(const Simulation::Impl& s, std::int64_t failure) {
   return s.collective ? s.collective->min_failure(s, failure) : failure;
@@ -532,23 +498,6 @@ bool Simulation::Impl::try_step(double dt) {
   return true;
 }
 
-// Remedies for a tangled step that the scene has not already taken (docs/algorithm.md §9).
-static std::string tangling_remedies(const HydroOptions& o, AleMode ale_mode) {
-  std::vector<std::string> tips;
-  if (o.hourglass != Hourglass::subzonal_triangles)
-    tips.push_back(
-        "numerics.hourglass = \"subzonal_triangles\" with hourglass_coefficient = 2 (docs/algorithm.md §18)");
-  else if (o.hourglass_coefficient < 2)
-    tips.push_back("a larger numerics.hourglass_coefficient (2 is measured to hold a blast in a box)");
-  if (o.cfl > 0.1) tips.push_back("a lower numerics.cfl");
-  if (o.viscosity != Viscosity::edge && o.q1 < 2) tips.push_back("a larger numerics.q1");
-  tips.push_back("a finer or better-shaped mesh near the zone");
-  if (ale_mode == AleMode::lagrangian) tips.push_back("ale.mode = \"ale\" (rezone and remap, docs/ale.md)");
-  std::string text = "try ";
-  for (std::size_t i = 0; i < tips.size(); ++i) text += (i == 0 ? "" : i + 1 == tips.size() ? " or " : ", ") + tips[i];
-  return text;
-}
-
 void Simulation::Impl::step(double t_stop) {
   if (t_stop <= t) return;
   const HydroOptions& o = problem.options;
@@ -580,23 +529,7 @@ void Simulation::Impl::step(double t_stop) {
       break;
   }
   for (int attempt = 0;; ++attempt) {
-    if (dt < dt_min) {
-      std::ostringstream msg;
-      msg << "time step collapsed at cycle " << cycle << ", t = " << t << ": dt = " << dt << " < dt_min = " << dt_min;
-      const auto limiting = [&](Index z) {
-        std::ostringstream text;
-        text << "; limiting " << describe_zone(*this, z) << ", area " << area[z] << ", sound speed " << c[z]
-             << ", density " << rho[z];
-        return text.str();
-      };
-      if (collective && dt_zone >= 0)
-        msg << collective->zone_text(*this, dt_zone, limiting);  // dt_zone is global
-      else if (dt_zone >= 0 && dt_zone < mesh().num_zones())
-        msg << limiting(dt_zone);
-      msg << " (the mesh is tangling or a zone is being crushed: refine the mesh, lower the cfl, or raise the "
-             "viscosity)";
-      throw Error(msg.str());
-    }
+    if (dt < dt_min) throw_dt_collapse(*this, dt);
     dt_control_prev = dt;
     const bool clipped = t + dt >= t_stop;
     const double dt_taken = clipped ? t_stop - t : dt;
@@ -604,36 +537,7 @@ void Simulation::Impl::step(double t_stop) {
       if (clipped) t = t_stop, dt_reason = DtReason::landing;  // land exactly
       break;
     }
-    if (attempt >= o.max_retries) {
-      // Report the tangled zone at the end of the last attempt, or the point through a wall.
-      std::ostringstream msg;
-      Index tangled = find_tangled_zone(dt_taken);
-      // A distributed run: the lowest tangled zone over the ranks (global), worded by its owner.
-      const std::int64_t tangled_code =
-          collective ? collective->min_failure(*this, tangled >= 0 ? failure_code(tangled, 0) : kNoFailure) : 0;
-      if (collective) tangled = tangled_code != kNoFailure ? failure_zone(tangled_code) : -1;
-      Index p = tangled < 0 ? find_wall_crossing(*this, dt_taken) : -1;
-      if (collective && tangled < 0) p = collective->min_point(*this, p);
-      if (p >= 0) {
-        const auto crossing_text = [&](Index q) { return describe_wall_crossing(*this, q, dt_taken); };
-        msg << "cycle " << cycle << ", t = " << t << ": "
-            << (collective ? collective->point_text(*this, p, crossing_text) : crossing_text(p))
-            << " even with dt = " << dt_taken << " after " << attempt << " retries (the mesh is folding against the "
-            << "wall; " << tangling_remedies(o, problem.ale.mode) << ")";
-        throw Error(msg.str());
-      }
-      msg << "cycle " << cycle << ", t = " << t
-          << ": a zone tangled (non-positive area, crossing edges or a folded corner) even with dt = " << dt_taken
-          << " after " << attempt << " retries";
-      const auto describe = [&](Index z) { return "; " + describe_zone(*this, z); };
-      if (collective) {
-        if (tangled >= 0) msg << collective->zone_text(*this, tangled, describe);  // tangled is global
-      } else if (tangled >= 0) {
-        msg << describe(tangled);
-      }
-      msg << " (the mesh is folding there; " << tangling_remedies(o, problem.ale.mode) << ")";
-      throw Error(msg.str());
-    }
+    if (attempt >= o.max_retries) throw_tangled_step(*this, dt_taken, attempt);
     dt *= 0.5;
     dt_reason = DtReason::retry;
   }

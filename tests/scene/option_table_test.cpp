@@ -273,7 +273,9 @@ TEST_F(OptionTables, ReaderAndValidateAgreeOnEveryRow) {
       });
   check_table<stagger::Strength>(
       load_fn, error_fn, stagger::strength_option_table(), "material[0].strength.",
-      [](const stagger::Scene& s) -> const stagger::Strength& { return *s.problem.materials.at(0).strength; },
+      [](const stagger::Scene& s) -> const stagger::Strength& {
+        return std::get<stagger::Strength>(*s.problem.materials.at(0).strength);
+      },
       [](const stagger::Scene&, const stagger::Strength& values) {
         stagger::strength_option_table().validate(values);
       });
@@ -327,7 +329,7 @@ TEST_F(OptionTables, ProblemValidateUsesTheTables) {
   problem.deposits[0].energy = -1;
   rejects(problem, "deposit[0].energy: must be > 0, got -1");
   problem = scene.problem;
-  problem.materials[0].strength->yield_stress = 0;
+  std::get<stagger::LinearHardening>(*problem.materials[0].strength).yield_stress = 0;
   rejects(problem, "material 'gas': strength.yield_stress: must be > 0, got 0");
   problem = scene.problem;
   std::get<stagger::MieGruneisen>(problem.materials[1].eos).s = -0.5;

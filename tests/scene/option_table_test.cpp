@@ -357,3 +357,21 @@ TEST_F(OptionTables, ReaderMessagesNameFileLineKeyAndMeaning) {
             std::string::npos)
       << error_of("output.history_every", "3000000000");
 }
+
+// [material.strength] picks its model by `model`; without the key it is the linear-hardening
+// model, so scenes written before the key read unchanged.
+TEST_F(OptionTables, StrengthModelKeyDefaultsToLinearHardening) {
+  const stagger::Scene implicit = load("time.end", "0.1");
+  const stagger::Scene named = load("material[0].strength.model", "\"linear_hardening\"");
+  for (const stagger::Scene* scene : {&implicit, &named}) {
+    ASSERT_TRUE(scene->problem.materials[0].strength);
+    const auto* model = std::get_if<stagger::LinearHardening>(&*scene->problem.materials[0].strength);
+    ASSERT_NE(model, nullptr);
+    EXPECT_EQ(model->shear_modulus, 2.0);
+    EXPECT_EQ(model->yield_stress, 3.0);
+    EXPECT_EQ(model->hardening_modulus, 0.0);
+  }
+  const std::string unknown = error_of("material[0].strength.model", "\"johnson_cook\"");
+  EXPECT_NE(unknown.find("unknown value \"johnson_cook\"; use one of \"linear_hardening\""), std::string::npos)
+      << unknown;
+}

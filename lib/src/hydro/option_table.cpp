@@ -3,6 +3,7 @@
 #include "stagger/option_table.hpp"
 
 #include "hydro/option_rows.hpp"
+#include "strength/strength_models.hpp"
 
 namespace stagger {
 
@@ -223,6 +224,13 @@ void RunControl::validate() const {
 
 // ---- docs/scenes.md ----
 
+std::string strength_option_tables_listing() {
+  std::string text;
+  for (const StrengthTableText& table : strength_option_table_texts())
+    text += "### [" + table.section + "] (" + table.struct_name + ")\n" + table.markdown + "\n";
+  return text;
+}
+
 namespace {
 
 std::string generated_table(const std::string& section) {
@@ -231,7 +239,8 @@ std::string generated_table(const std::string& section) {
   if (section == ale_option_table().section) return ale_option_table().markdown();
   if (section == output_option_table().section) return output_option_table().markdown();
   if (section == deposit_option_table().section) return deposit_option_table().markdown();
-  if (section == strength_option_table().section) return strength_option_table().markdown();
+  for (const StrengthTableText& table : strength_option_table_texts())
+    if (section == table.section) return table.markdown;
   if (section == ideal_gas_option_table().section) return ideal_gas_option_table().markdown();
   if (section == mie_gruneisen_option_table().section) return mie_gruneisen_option_table().markdown();
   if (section == jwl_option_table().section) return jwl_option_table().markdown();
@@ -244,8 +253,9 @@ std::string generated_table(const std::string& section) {
 std::string with_generated_option_tables(const std::string& document) {
   static const std::string begin_mark = "<!-- begin generated: ", end_mark = "<!-- end generated: ",
                            close = " options -->";
-  const std::vector<std::string> sections = {"numerics",  "time",          "output", "deposit", "material.strength",
-                                             "ideal_gas", "mie_gruneisen", "jwl",    "ale"};
+  std::vector<std::string> sections = {"numerics",  "time",          "output", "deposit",
+                                       "ideal_gas", "mie_gruneisen", "jwl",    "ale"};
+  for (const StrengthTableText& table : strength_option_table_texts()) sections.push_back(table.section);
   std::vector<std::string> seen;
   std::istringstream in(document);
   std::string out, line;

@@ -46,6 +46,23 @@ inline StrengthModel default_strength_model(const std::string& name) {
   return model;
 }
 
+// A model's option table as docs/scenes.md and stagger-options show it.
+struct StrengthTableText {
+  std::string section, struct_name, markdown;
+};
+
+// The option tables of the models, in variant order.
+inline std::vector<StrengthTableText> strength_option_table_texts() {
+  return []<std::size_t... I>(std::index_sequence<I...>) {
+    const auto text = [](const auto& table) {
+      return StrengthTableText{table.section, table.struct_name, table.markdown()};
+    };
+    return std::vector<StrengthTableText>{
+        text(strength_option_table_of(std::variant_alternative_t<I, StrengthModel>{}))...};
+  }
+  (std::make_index_sequence<std::variant_size_v<StrengthModel>>{});
+}
+
 template <Variant M>
 const char* strength_model_name(const M& model) {
   return std::visit([](const auto& m) { return strength_model_name(m); }, model);

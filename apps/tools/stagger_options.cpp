@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
     if (argc == 1) {
       print(stagger::time_option_table());
       print(stagger::deposit_option_table());
-      print(stagger::strength_option_table());
+      std::cout << stagger::strength_option_tables_listing();  // one table per strength model
       print(stagger::numerics_option_table());
       print(stagger::ale_option_table());
       print(stagger::output_option_table());

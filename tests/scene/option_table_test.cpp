@@ -246,7 +246,9 @@ TEST_F(OptionTables, ReaderAndValidateAgreeOnEveryRow) {
       });
   check_table<stagger::Strength>(
       load_fn, error_fn, stagger::strength_option_table(), "material[0].strength.",
-      [](const stagger::Scene& s) -> const stagger::Strength& { return *s.problem.materials.at(0).strength; },
+      [](const stagger::Scene& s) -> const stagger::Strength& {
+        return std::get<stagger::Strength>(*s.problem.materials.at(0).strength);
+      },
       [](const stagger::Scene&, const stagger::Strength& values) {
         stagger::strength_option_table().validate(values);
       });
@@ -300,7 +302,7 @@ TEST_F(OptionTables, ProblemValidateUsesTheTables) {
   problem.deposits[0].energy = -1;
   rejects(problem, "deposit[0].energy: must be > 0, got -1");
   problem = scene.problem;
-  problem.materials[0].strength->yield_stress = 0;
+  std::get<stagger::LinearHardening>(*problem.materials[0].strength).yield_stress = 0;
   rejects(problem, "material 'gas': strength.yield_stress: must be > 0, got 0");
   problem = scene.problem;
   std::get<stagger::MieGruneisen>(problem.materials[1].eos).s = -0.5;
@@ -327,4 +329,22 @@ TEST_F(OptionTables, ReaderMessagesNameFileLineKeyAndMeaning) {
   EXPECT_NE(error_of("output.history_every", "3000000000").find("must be at most 2147483647, got 3000000000"),
             std::string::npos)
       << error_of("output.history_every", "3000000000");
+}
+
+// [material.strength] picks its model by `model`; without the key it is the linear-hardening
+// model, so scenes written before the key read unchanged.
+TEST_F(OptionTables, StrengthModelKeyDefaultsToLinearHardening) {
+  const stagger::Scene implicit = load("time.end", "0.1");
+  const stagger::Scene named = load("material[0].strength.model", "\"linear_hardening\"");
+  for (const stagger::Scene* scene : {&implicit, &named}) {
+    ASSERT_TRUE(scene->problem.materials[0].strength);
+    const auto* model = std::get_if<stagger::LinearHardening>(&*scene->problem.materials[0].strength);
+    ASSERT_NE(model, nullptr);
+    EXPECT_EQ(model->shear_modulus, 2.0);
+    EXPECT_EQ(model->yield_stress, 3.0);
+    EXPECT_EQ(model->hardening_modulus, 0.0);
+  }
+  const std::string unknown = error_of("material[0].strength.model", "\"johnson_cook\"");
+  EXPECT_NE(unknown.find("unknown value \"johnson_cook\"; use one of \"linear_hardening\""), std::string::npos)
+      << unknown;
 }

@@ -45,9 +45,10 @@ Compression compress(const std::string& hardening, double t_end) {
   if (!hardening.empty()) overrides.emplace_back("material[0].strength.hardening_modulus", hardening);
   Scene scene = load_scene(scene_file(), overrides);
   Compression c;
-  c.mu = scene.problem.materials[0].strength->shear_modulus;
-  c.yield0 = scene.problem.materials[0].strength->yield_stress;
-  c.hardening = scene.problem.materials[0].strength->hardening_modulus;
+  const auto& strength = std::get<LinearHardening>(*scene.problem.materials[0].strength);
+  c.mu = strength.shear_modulus;
+  c.yield0 = strength.yield_stress;
+  c.hardening = strength.hardening_modulus;
   Simulation sim(std::move(scene.problem));
   sim.advance_to(t_end);
   c.cycles = sim.cycle();

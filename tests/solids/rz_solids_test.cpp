@@ -31,7 +31,7 @@ TEST(RzStrength, TaylorAnvilWithHardeningKeepsTheAuditTheAxisAndTheYieldSurface)
   Scene s = scene("taylor_anvil", {{"mesh.refine", "0.5"}, {"time.end", "12e-6"}});
   ASSERT_EQ(s.problem.options.geometry, CoordinateSystem::rz);
   ASSERT_TRUE(s.problem.materials[0].strength);
-  const Strength strength = *s.problem.materials[0].strength;
+  const Strength strength = std::get<Strength>(*s.problem.materials[0].strength);
   ASSERT_GT(strength.hardening_modulus, 0.0);
   const Reference reference = s.control.reference;
   Simulation sim(std::move(s.problem));

@@ -34,13 +34,22 @@ struct Jwl {
 /// One of the equations of state above (std::visit or std::get_if to inspect).
 using EquationOfState = std::variant<IdealGas, MieGruneisen, Jwl>;
 
-/// Elastic-plastic strength: shear modulus mu and von Mises yield stress Y = Y0 + H eps_p with
-/// linear isotropic hardening (H = 0: elastic-perfectly-plastic).
-struct Strength {
+/// Elastic-plastic strength, the linear-hardening model (scene `model = "linear_hardening"`, the
+/// default): shear modulus mu and von Mises yield stress Y = Y0 + H eps_p with linear isotropic
+/// hardening (H = 0: elastic-perfectly-plastic). docs/solids.md, "Strength models".
+struct LinearHardening {
   double shear_modulus = 0;      ///< mu, >= 0
   double yield_stress = 0;       ///< Y0 (sqrt(3/2 S:S) <= Y), > 0 (strength_option_table())
   double hardening_modulus = 0;  ///< H >= 0: dY / d(equivalent plastic strain)
 };
+
+/// The linear-hardening model under its former name (set-ups written before the strength
+/// models were a variant: `material.strength = Strength{mu, Y0, H}`).
+using Strength = LinearHardening;
+
+/// One of the strength models above (std::visit or std::get_if to inspect); each model lives in
+/// lib/src/strength/ (docs/solids.md, "Adding a strength model").
+using StrengthModel = std::variant<LinearHardening>;
 
 /// Programmed burn (LS-DYNA style): lighting time = distance to the nearest detonator
 /// (points, or a plane through `plane_point` with normal `plane_normal`) / detonation_speed.
@@ -55,11 +64,11 @@ struct Burn {
 
 /// A named material: one EOS, optional strength and burn.
 struct Material {
-  std::string name;                  ///< referred to by RegionSetup::material
-  EquationOfState eos = IdealGas{};  ///< the pointwise p(rho, e)
-  std::optional<Strength> strength;  ///< none: a fluid (no deviatoric stress)
-  std::optional<Burn> burn;          ///< programmed burn (JWL products only)
-  double min_energy = -1e300;        ///< floor reported as an error when crossed (EOS domain)
+  std::string name;                       ///< referred to by RegionSetup::material
+  EquationOfState eos = IdealGas{};       ///< the pointwise p(rho, e)
+  std::optional<StrengthModel> strength;  ///< none: a fluid (no deviatoric stress)
+  std::optional<Burn> burn;               ///< programmed burn (JWL products only)
+  double min_energy = -1e300;             ///< floor reported as an error when crossed (EOS domain)
 };
 
 /// Pointwise EOS evaluation (used by set-up, tests and the exact solutions).

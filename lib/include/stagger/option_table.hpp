@@ -89,8 +89,12 @@ const OptionTable<Problem>& time_option_table();
 const OptionTable<RunControl>& output_option_table();
 /// [[deposit]]: EnergyDeposit.
 const OptionTable<EnergyDeposit>& deposit_option_table();
-/// [material.strength]: Strength.
-const OptionTable<Strength>& strength_option_table();
+/// [material.strength] of the linear-hardening model (`model = "linear_hardening"` or none):
+/// LinearHardening (alias Strength). Defined with the model, lib/src/strength/linear_hardening.cpp.
+const OptionTable<LinearHardening>& strength_option_table();
+/// Every strength model's table as stagger-options prints it: "### [section] (Struct)", the
+/// markdown table and a blank line, in the order of StrengthModel's alternatives.
+std::string strength_option_tables_listing();
 /// [[material]] with eos = "ideal_gas": IdealGas (section "ideal_gas").
 const OptionTable<IdealGas>& ideal_gas_option_table();
 /// [[material]] with eos = "mie_gruneisen": MieGruneisen (section "mie_gruneisen").

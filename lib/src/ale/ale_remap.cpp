@@ -14,11 +14,11 @@
 #include "ale/remap.hpp"
 #include "ale/rezone.hpp"
 #include "hydro/boundary.hpp"
-#include "hydro/kernels/strength.hpp"
 #include "hydro/kernels/subzonal_pressure.hpp"
 #include "hydro/kernels/zone_status.hpp"
 #include "stagger/error.hpp"
 #include "state/state_table.hpp"
+#include "strength/strength_models.hpp"
 
 namespace stagger {
 
@@ -378,12 +378,8 @@ bool AleRemap::remap(RemapState&) {
     for (const ZoneRange& r : s_.ranges) {
       const Material& mat = s_.problem.materials[r.material];
       if (!mat.strength) continue;
-      for (Index z = r.begin; z < r.end; ++z) {
-        Deviator d{s_.sxx[z], s_.syy[z], s_.sxy[z]};
-        const double yield = mat.strength->yield_stress + mat.strength->hardening_modulus * s_.plastic[z];
-        radial_return(yield, 0.0, 0.0, mat.strength->shear_modulus, d);
-        s_.sxx[z] = d.xx, s_.syy[z] = d.yy, s_.sxy[z] = d.xy;
-      }
+      return_to_yield_surface(*mat.strength, r.begin, r.end, s_.plastic.data(), s_.sxx.data(), s_.syy.data(),
+                              s_.sxy.data());
     }
   }
   // Subzonal masses (the subzonal hourglass options): reset to the zone's remapped density on

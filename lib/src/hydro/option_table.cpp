@@ -2,129 +2,12 @@
 // default member initialisers. Scene reading lives in lib/src/scene/option_reader.cpp.
 #include "stagger/option_table.hpp"
 
-#include <climits>
-#include <cmath>
-#include <sstream>
-#include <type_traits>
-
-#include "stagger/error.hpp"
+#include "hydro/option_rows.hpp"
+#include "strength/strength_models.hpp"
 
 namespace stagger {
 
-namespace {
-
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
-// A number for messages and docs: 10 significant digits, like the scene reader's show().
-std::string number_text(double value) {
-  if (std::isnan(value)) return "NaN";
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  std::ostringstream out;
-  out.precision(10);
-  out << value;
-  return out.str();
-}
-
-// ---- rows from pointers to members ----
-
-template <class Member>
-struct MemberTraits;
-template <class Object, class Value>
-struct MemberTraits<Value Object::*> {
-  using object = Object;
-  using value = Value;
-};
-template <auto Member>
-using ObjectOf = typename MemberTraits<decltype(Member)>::object;
-template <auto Member>
-using ValueOf = typename MemberTraits<decltype(Member)>::value;
-
-template <auto Member>
-double get_member(const ObjectOf<Member>& object) {
-  if constexpr (std::is_enum_v<ValueOf<Member>>)
-    return static_cast<double>(static_cast<int>(object.*Member));
-  else
-    return static_cast<double>(object.*Member);
-}
-
-template <auto Member>
-void set_member(ObjectOf<Member>& object, double value) {
-  using Value = ValueOf<Member>;
-  if constexpr (std::is_enum_v<Value>)
-    object.*Member = static_cast<Value>(static_cast<int>(value));
-  else if constexpr (std::is_same_v<Value, bool>)
-    object.*Member = value != 0;
-  else
-    object.*Member = static_cast<Value>(value);
-}
-
-template <auto Member>
-Option<ObjectOf<Member>> row(const char* key, OptionType type, const char* unit, const char* doc) {
-  Option<ObjectOf<Member>> option;
-  option.key = key;
-  option.type = type;
-  option.get = &get_member<Member>;
-  option.set = &set_member<Member>;
-  option.unit = unit;
-  option.doc = doc;
-  return option;
-}
-
-OptionRange at_least(double low) {
-  return {low, kInfinity, false, true};
-}
-OptionRange above(double low) {
-  return {low, kInfinity, true, true};
-}
-const OptionRange kAnyValue{};
-
-template <auto Member>
-Option<ObjectOf<Member>> number(const char* key, OptionRange range, const char* unit, const char* doc) {
-  static_assert(std::is_same_v<ValueOf<Member>, double>);
-  auto option = row<Member>(key, OptionType::number, unit, doc);
-  option.range = range;
-  return option;
-}
-
-template <auto Member>
-Option<ObjectOf<Member>> required_number(const char* key, OptionRange range, const char* unit, const char* doc) {
-  auto option = number<Member>(key, range, unit, doc);
-  option.required = true;
-  return option;
-}
-
-template <auto Member>
-Option<ObjectOf<Member>> integer(const char* key, OptionRange range, const char* unit, const char* doc) {
-  using Value = ValueOf<Member>;
-  static_assert(std::is_integral_v<Value> && !std::is_same_v<Value, bool>);
-  auto option = row<Member>(key, OptionType::integer, unit, doc);
-  option.range = range;
-  option.integer_max = static_cast<double>(std::numeric_limits<Value>::max());
-  return option;
-}
-
-template <auto Member>
-Option<ObjectOf<Member>> flag(const char* key, const char* doc) {
-  static_assert(std::is_same_v<ValueOf<Member>, bool>);
-  return row<Member>(key, OptionType::flag, "-", doc);
-}
-
-template <auto Member>
-Option<ObjectOf<Member>> choice(const char* key, std::vector<const char*> names, const char* doc) {
-  static_assert(std::is_enum_v<ValueOf<Member>>);
-  auto option = row<Member>(key, OptionType::choice, "-", doc);
-  option.choices = std::move(names);
-  return option;
-}
-
-template <class Options>
-const Option<Options>* find_row(const OptionTable<Options>& table, const std::string& key) {
-  for (const auto& option : table.options)
-    if (key == option.key) return &option;
-  return nullptr;
-}
-
-}  // namespace
+using namespace option_rows;
 
 // ---- OptionRange ----
 
@@ -145,114 +28,16 @@ std::string OptionRange::text() const {
   return "any finite value";
 }
 
-// ---- Option ----
-
-template <class Options>
-std::string Option<Options>::value_text(double value) const {
-  switch (type) {
-    case OptionType::flag:
-      return value != 0 ? "true" : "false";
-    case OptionType::choice: {
-      const auto index = static_cast<std::size_t>(value);
-      return value >= 0 && index < choices.size() ? std::string("\"") + choices[index] + "\"" : number_text(value);
-    }
-    case OptionType::integer: {
-      std::ostringstream out;
-      out << static_cast<long long>(value);
-      return out.str();
-    }
-    case OptionType::number:
-      break;
-  }
-  return number_text(value);
-}
-
-template <class Options>
-std::string Option<Options>::check(double value) const {
-  switch (type) {
-    case OptionType::flag:
-      return {};
-    case OptionType::choice:
-      if (value >= 0 && static_cast<std::size_t>(value) < choices.size()) return {};
-      return "must be one of " + range_text() + ", got " + number_text(value);
-    case OptionType::integer:
-      if (range.contains(value) && value > integer_max)
-        return "must be at most " + value_text(integer_max) + ", got " + number_text(value);
-      [[fallthrough]];
-    case OptionType::number:
-      if (!range.contains(value)) return "must be " + range.text() + ", got " + number_text(value);
-      return {};
-  }
-  return {};
-}
-
-template <class Options>
-std::string Option<Options>::range_text() const {
-  switch (type) {
-    case OptionType::flag:
-      return "true or false";
-    case OptionType::choice: {
-      std::string text;
-      for (std::size_t k = 0; k < choices.size(); ++k)
-        text += std::string(k == 0 ? "" : k + 1 == choices.size() ? " or " : ", ") + "\"" + choices[k] + "\"";
-      return text;
-    }
-    case OptionType::integer:
-    case OptionType::number: {
-      const std::string text = range.text();
-      return text.rfind("in ", 0) == 0 ? text.substr(3) : text;
-    }
-  }
-  return {};
-}
-
-// ---- OptionTable ----
-
-template <class Options>
-void OptionTable<Options>::validate(const Options& values, const std::string& where) const {
-  for (const auto& option : options) {
-    const std::string problem = option.check(option.get(values));
-    if (!problem.empty())
-      throw Error((where.empty() ? std::string(section) + "." : where) + option.key + ": " + problem + "; " +
-                  option.doc);
-  }
-}
-
-template <class Options>
-std::string OptionTable<Options>::echo(const Options& values) const {
-  std::string text;
-  for (const auto& option : options)
-    text += (text.empty() ? "" : ", ") + std::string(option.key) + " = " + option.value_text(option.get(values));
-  return text;
-}
-
-template <class Options>
-std::string OptionTable<Options>::markdown() const {
-  std::string text = "| key | type | default | admissible values | unit | meaning |\n|---|---|---|---|---|---|\n";
-  for (const auto& option : options) {
-    const char* type = option.type == OptionType::number    ? "number"
-                       : option.type == OptionType::integer ? "integer"
-                       : option.type == OptionType::flag    ? "bool"
-                                                            : "string";
-    text += "| `" + std::string(option.key) + "` | " + type + " | " +
-            (option.required ? std::string("required") : "`" + option.value_text(option.default_value()) + "`") +
-            " | " + option.range_text() + " | " + option.unit + " | " + option.doc + " |\n";
-  }
-  return text;
-}
-
 template struct Option<HydroOptions>;
 template struct Option<AleOptions>;
 template struct OptionTable<AleOptions>;
 template struct Option<Problem>;
 template struct Option<RunControl>;
 template struct Option<EnergyDeposit>;
-template struct Option<Strength>;
 template struct OptionTable<HydroOptions>;
 template struct OptionTable<Problem>;
 template struct OptionTable<RunControl>;
 template struct OptionTable<EnergyDeposit>;
-template struct OptionTable<Strength>;
 template struct Option<IdealGas>;
 template struct Option<MieGruneisen>;
 template struct Option<Jwl>;
@@ -394,23 +179,6 @@ const OptionTable<EnergyDeposit>& deposit_option_table() {
   return table;
 }
 
-const OptionTable<Strength>& strength_option_table() {
-  using S = Strength;
-  static const OptionTable<Strength> table{
-      "material.strength",
-      "Strength",
-      {
-          required_number<&S::shear_modulus>("shear_modulus", at_least(0), "pressure", "shear modulus mu (§7)"),
-          required_number<&S::yield_stress>("yield_stress", above(0), "pressure",
-                                            "von Mises yield stress Y (§7); a very large value gives an elastic "
-                                            "material"),
-          number<&S::hardening_modulus>("hardening_modulus", at_least(0), "pressure",
-                                        "linear isotropic hardening H: the yield stress is Y + H eps_p with eps_p "
-                                        "the equivalent plastic strain (§7); 0 is perfectly plastic"),
-      }};
-  return table;
-}
-
 const OptionTable<IdealGas>& ideal_gas_option_table() {
   static const OptionTable<IdealGas> table{
       "ideal_gas",
@@ -456,6 +224,13 @@ void RunControl::validate() const {
 
 // ---- docs/scenes.md ----
 
+std::string strength_option_tables_listing() {
+  std::string text;
+  for (const StrengthTableText& table : strength_option_table_texts())
+    text += "### [" + table.section + "] (" + table.struct_name + ")\n" + table.markdown + "\n";
+  return text;
+}
+
 namespace {
 
 std::string generated_table(const std::string& section) {
@@ -464,7 +239,8 @@ std::string generated_table(const std::string& section) {
   if (section == ale_option_table().section) return ale_option_table().markdown();
   if (section == output_option_table().section) return output_option_table().markdown();
   if (section == deposit_option_table().section) return deposit_option_table().markdown();
-  if (section == strength_option_table().section) return strength_option_table().markdown();
+  for (const StrengthTableText& table : strength_option_table_texts())
+    if (section == table.section) return table.markdown;
   if (section == ideal_gas_option_table().section) return ideal_gas_option_table().markdown();
   if (section == mie_gruneisen_option_table().section) return mie_gruneisen_option_table().markdown();
   if (section == jwl_option_table().section) return jwl_option_table().markdown();
@@ -477,8 +253,9 @@ std::string generated_table(const std::string& section) {
 std::string with_generated_option_tables(const std::string& document) {
   static const std::string begin_mark = "<!-- begin generated: ", end_mark = "<!-- end generated: ",
                            close = " options -->";
-  const std::vector<std::string> sections = {"numerics",  "time",          "output", "deposit", "material.strength",
-                                             "ideal_gas", "mie_gruneisen", "jwl",    "ale"};
+  std::vector<std::string> sections = {"numerics",  "time",          "output", "deposit",
+                                       "ideal_gas", "mie_gruneisen", "jwl",    "ale"};
+  for (const StrengthTableText& table : strength_option_table_texts()) sections.push_back(table.section);
   std::vector<std::string> seen;
   std::istringstream in(document);
   std::string out, line;

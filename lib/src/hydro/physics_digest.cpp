@@ -7,6 +7,7 @@
 #include <variant>
 
 #include "stagger/option_table.hpp"
+#include "strength/strength_models.hpp"
 
 namespace stagger {
 
@@ -126,11 +127,11 @@ void material_entries(const Material& mat, Digest& d) {
   }
   d.value("materials", k + "min_energy", mat.min_energy);
   if (mat.strength) {
-    d.value("materials", k + "strength.shear_modulus", mat.strength->shear_modulus);
-    d.value("materials", k + "strength.yield_stress", mat.strength->yield_stress);
-    // Only when set, so digests of scenes without hardening stay as they were.
-    if (mat.strength->hardening_modulus != 0)
-      d.value("materials", k + "strength.hardening_modulus", mat.strength->hardening_modulus);
+    // The default model adds no entry, so digests of existing scenes stay as they were.
+    if (!is_default_strength_model(*mat.strength))
+      d.value("materials", k + "strength.model", strength_model_name(*mat.strength));
+    for (const auto& [key, value] : strength_digest_rows(*mat.strength))
+      d.value("materials", k + "strength." + key, value);
   } else {
     d.value("materials", k + "strength", "none");
   }

@@ -7,6 +7,7 @@
 
 #include "stagger/error.hpp"
 #include "stagger/option_table.hpp"
+#include "strength/strength_models.hpp"
 
 namespace stagger {
 
@@ -36,7 +37,7 @@ void validate_material(const Material& m) {
   if (const auto* g = std::get_if<IdealGas>(&m.eos)) ideal_gas_option_table().validate(*g, where);
   if (const auto* mg = std::get_if<MieGruneisen>(&m.eos)) mie_gruneisen_option_table().validate(*mg, where);
   if (const auto* j = std::get_if<Jwl>(&m.eos)) jwl_option_table().validate(*j, where);
-  if (m.strength) strength_option_table().validate(*m.strength, where + "strength.");
+  if (m.strength) validate_strength_model(*m.strength, where + "strength.");
   if (m.burn) {
     require(m.burn->detonation_speed > 0, where + "burn detonation_speed must be > 0");
     require(!m.burn->points.empty() || m.burn->plane.has_value(),

@@ -33,6 +33,7 @@
 #include "hydro/simulation_impl.hpp"
 #include "stagger/error.hpp"
 #include "state/state_table.hpp"
+#include "strength/strength_models.hpp"
 
 namespace stagger {
 
@@ -52,9 +53,10 @@ ZoneModel zone_model(const Material& material) {
   m.min_energy = material.min_energy;
   if (material.strength) {
     m.strength = true;
-    m.mu = material.strength->shear_modulus;
-    m.yield = material.strength->yield_stress;
-    m.hardening = material.strength->hardening_modulus;
+    const LinearHardening constants = zone_loop_constants(*material.strength);  // one visit per range
+    m.mu = constants.shear_modulus;
+    m.yield = constants.yield_stress;
+    m.hardening = constants.hardening_modulus;
   }
   if (material.burn) {
     m.burn = true;

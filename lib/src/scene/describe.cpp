@@ -4,6 +4,7 @@
 
 #include "scene_internal.hpp"
 #include "stagger/option_table.hpp"
+#include "strength/strength_models.hpp"
 
 namespace stagger {
 
@@ -80,7 +81,7 @@ std::string describe(const Scene& scene) {
   out << "materials\n";
   for (const auto& material : problem.materials) {
     out << "  " << material.name << ": " << eos_text(material.eos) << "\n";
-    if (material.strength) out << "    strength: " << strength_option_table().echo(*material.strength) << "\n";
+    if (material.strength) out << "    strength: " << strength_echo(*material.strength) << "\n";
     if (material.burn) {
       const Burn& burn = *material.burn;
       out << "    burn: D = " << burn.detonation_speed << ", " << burn.points.size() << " detonation point(s)"

@@ -48,6 +48,18 @@ const Eos& material_eos(Section& section, const Material& material, const char* 
   return *eos;
 }
 
+// The strength of a reference whose exact solution is perfectly plastic: the linear-hardening
+// model with H = 0.
+const LinearHardening& perfectly_plastic(Section& section, const Material& material, const char* what) {
+  if (!material.strength)
+    section.fail("reference", std::string("the ") + what + " needs material '" + material.name + "' with strength");
+  const auto* model = std::get_if<LinearHardening>(&*material.strength);
+  if (model == nullptr || model->hardening_modulus != 0)
+    section.fail("reference", std::string("the ") + what + "'s exact solution is perfectly plastic: material '" +
+                                  material.name + "' needs model = \"linear_hardening\" and hardening_modulus = 0");
+  return *model;
+}
+
 double positive(Section& section, const char* key, double fallback) {
   const double value = section.number(key, fallback);
   if (!(value > 0)) section.fail(key, "must be > 0");
@@ -148,13 +160,9 @@ void read_verification_section(Section& section, const Problem& problem, const S
     const Material& material = reference_material(section, problem);
     PistonParameters parameters;
     parameters.eos = material_eos<MieGruneisen>(section, material, "mie_gruneisen");
-    if (!material.strength)
-      section.fail("reference", "the piston needs material '" + material.name + "' with strength");
-    if (material.strength->hardening_modulus != 0)
-      section.fail("reference", "the piston's exact solution is perfectly plastic: material '" + material.name +
-                                    "' needs hardening_modulus = 0");
-    parameters.shear_modulus = material.strength->shear_modulus;
-    parameters.yield_stress = material.strength->yield_stress;
+    const LinearHardening& strength = perfectly_plastic(section, material, "piston");
+    parameters.shear_modulus = strength.shear_modulus;
+    parameters.yield_stress = strength.yield_stress;
     parameters.initial_pressure = section.number("initial_pressure", parameters.initial_pressure);
     parameters.piston_velocity = positive(section, "piston_velocity", parameters.piston_velocity);
     try {
@@ -167,11 +175,7 @@ void read_verification_section(Section& section, const Problem& problem, const S
     const Material& material = reference_material(section, problem);
     ShellParameters parameters;
     parameters.density = material_eos<MieGruneisen>(section, material, "mie_gruneisen").rho0;
-    if (!material.strength) section.fail("reference", "the shell needs material '" + material.name + "' with strength");
-    if (material.strength->hardening_modulus != 0)
-      section.fail("reference", "the shell's exact solution is perfectly plastic: material '" + material.name +
-                                    "' needs hardening_modulus = 0");
-    parameters.yield_stress = material.strength->yield_stress;
+    parameters.yield_stress = perfectly_plastic(section, material, "shell").yield_stress;
     parameters.inner_radius = positive(section, "inner_radius", parameters.inner_radius);
     parameters.outer_radius = positive(section, "outer_radius", parameters.outer_radius);
     if (!(parameters.outer_radius > parameters.inner_radius)) section.fail("outer_radius", "must exceed inner_radius");

@@ -14,6 +14,7 @@
 #include "overrides.hpp"
 #include "scene_internal.hpp"
 #include "stagger/error.hpp"
+#include "strength/strength_models.hpp"
 #include "warnings.hpp"
 
 namespace stagger {
@@ -136,10 +137,11 @@ Material read_material(Section& section) {
   }
   if (section.has("min_energy")) material.min_energy = section.number("min_energy");
   if (auto strength = section.subtable("strength")) {
-    Strength s;
-    read_options(*strength, strength_option_table(), s);
+    StrengthModel model =
+        default_strength_model(strength->choice("model", strength_model_names(), kDefaultStrengthModel));
+    std::visit([&](auto& m) { read_options(*strength, strength_option_table_of(m), m); }, model);
     strength->finish();
-    material.strength = s;
+    material.strength = model;
   }
   if (auto burn_section = section.subtable("burn")) {
     Burn burn;

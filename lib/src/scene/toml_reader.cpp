@@ -229,6 +229,11 @@ std::string Section::string(std::string_view key, const std::string& fallback) {
 
 std::string Section::choice(std::string_view key, std::initializer_list<const char*> allowed,
                             std::optional<std::string> fallback) {
+  return choice(key, std::vector<const char*>(allowed), std::move(fallback));
+}
+
+std::string Section::choice(std::string_view key, const std::vector<const char*>& allowed,
+                            std::optional<std::string> fallback) {
   std::string list;
   for (const char* option : allowed) list += std::string(list.empty() ? "" : ", ") + "\"" + option + "\"";
   if (!find(key) && fallback) return *fallback;

@@ -62,6 +62,8 @@ class Section {
   /// A string that must be one of `allowed`.
   std::string choice(std::string_view key, std::initializer_list<const char*> allowed,
                      std::optional<std::string> fallback = std::nullopt);
+  std::string choice(std::string_view key, const std::vector<const char*>& allowed,
+                     std::optional<std::string> fallback = std::nullopt);
   /// An array of exactly `count` numbers (count 0: any length).
   std::vector<double> numbers(std::string_view key, std::size_t count);
   /// A finite number held by `node` (an array element); errors name `key_label`.

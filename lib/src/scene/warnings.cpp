@@ -10,6 +10,7 @@
 
 #include "scene_internal.hpp"
 #include "stagger/error.hpp"
+#include "strength/strength_models.hpp"
 
 namespace stagger::scene_detail {
 
@@ -93,7 +94,7 @@ std::vector<ZoneState> initial_states(const Problem& problem) {
               : eos_energy_from_pressure(material.eos, s.rho, setup.pressure(centre[0], centre[1]));
       const double c2 = std::max(eos_sound_speed_squared(material.eos, s.rho, e), 0.0);
       s.bulk = s.rho * c2;
-      const double elastic = material.strength ? (4.0 / 3.0) * material.strength->shear_modulus / s.rho : 0.0;
+      const double elastic = material.strength ? (4.0 / 3.0) * shear_modulus(*material.strength, {}) / s.rho : 0.0;
       s.c = std::sqrt(c2 + elastic);
     } catch (const Error&) {
       s.c = 0;  // the reader has checked the EOS domain; nothing to estimate here
@@ -317,7 +318,8 @@ void review_scene(const toml::table& document, Scene& scene, const WarningThresh
     const Material& material = problem.materials[m];
     if (!material.strength) continue;
     const std::string path = "material[" + std::to_string(m) + "].strength";
-    const double mu = material.strength->shear_modulus, yield = material.strength->yield_stress;
+    // At t = 0: the model's mu and Y of the unstrained state.
+    const double mu = shear_modulus(*material.strength, {}), yield = yield_stress(*material.strength, {});
     if (mu > 0 && yield > limits.yield_over_shear * mu)
       warn(path + ".yield_stress", show(yield) + " is " + show(yield / mu) + " times the shear modulus " + show(mu) +
                                        ": the material will never yield; check the units (e.g. Pa in a Mbar scene)");

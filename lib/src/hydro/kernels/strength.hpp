@@ -1,16 +1,14 @@
 #pragma once
-// Deviatoric stress: Wilkins' hypo-elastic update (rate or objective form) and the von Mises
-// radial return, plane strain (docs/algorithm.md §7). Pointwise, inlined into the zone loops.
+// Deviatoric stress: Wilkins' hypo-elastic update (rate or objective form), plane strain
+// (docs/algorithm.md §7), and the predictor's return through the strength model's radial return
+// (lib/src/strength/). Pointwise, inlined into the zone loops.
 #include <algorithm>
 #include <cmath>
 
 #include "hydro/kernels/geometry.hpp"
+#include "strength/linear_hardening.hpp"
 
 namespace stagger {
-
-struct Deviator {
-  double xx = 0, yy = 0, xy = 0;
-};
 
 // Jaumann rate: dS/dt = 2 mu (D - tr(D)/3 I) + W S - S W, evaluated at stress s.
 [[gnu::always_inline]] inline Deviator stress_rate(double mu, const Deviator& s, const VelocityGradient& L) {
@@ -37,26 +35,6 @@ struct Deviator {
   out.yy += h * ((4.0 / 3.0) * mu * L.yy - (2.0 / 3.0) * mu * L.xx);
   out.xy += h * mu * (L.xy + L.yx);
   return out;
-}
-
-// von Mises radial return with S_zz = -(S_xx + S_yy) in the norm and linear isotropic hardening
-// (docs/algorithm.md §7): with the yield stress Y = Y0 + H eps_p at the start of the step and the
-// trial norm sigma_eq = sqrt(3/2 S:S) > Y, the plastic strain increment that puts the returned
-// stress on the hardened surface, sigma_eq - 3 mu d = Y + H d, is d = (sigma_eq - Y) / (3 mu + H);
-// s is scaled onto Y + H d. Returns d (0 inside the surface). H = 0 is bitwise the perfectly
-// plastic return (Y + 0 eps_p = Y, 3 mu + 0 = 3 mu).
-[[gnu::always_inline]] inline double radial_return(double yield0, double hardening, double eps_p, double mu,
-                                                   Deviator& s) {
-  const double yield = yield0 + hardening * eps_p;
-  const double szz = -(s.xx + s.yy);
-  const double j2 = s.xx * s.xx + s.yy * s.yy + szz * szz + 2 * s.xy * s.xy;
-  const double seq = std::sqrt(1.5 * j2);
-  if (seq <= yield) return 0.0;
-  const double stiffness = 3 * mu + hardening;
-  const double d = stiffness > 0 ? (seq - yield) / stiffness : 0.0;
-  const double f = (yield + hardening * d) / seq;
-  s.xx *= f, s.yy *= f, s.xy *= f;
-  return d;
 }
 
 // Half-step stress of the predictor (step 3): S^{n+1/2} = return(S^n + h dS/dt(S^n, L)),

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <sstream>
 
+#include "hydro/option_rows.hpp"
 #include "stagger/error.hpp"
 
 namespace stagger::scene_detail {
@@ -39,13 +40,10 @@ std::string type_name(const toml::node& node) {
   }
 }
 
+// The option tables' number text (10 significant digits), so that a scene error and the option
+// table's own messages print a value alike.
 std::string show(double value) {
-  if (std::isnan(value)) return "NaN";
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  std::ostringstream out;
-  out.precision(10);
-  out << value;
-  return out.str();
+  return option_rows::number_text(value);
 }
 
 namespace {

@@ -31,7 +31,7 @@ std::uint64_t fnv1a64(std::span<const double> values, std::uint64_t hash) {
 void ByteWriter::u64(std::uint64_t value) {
   char bytes[8];
   for (int k = 0; k < 8; ++k) bytes[k] = static_cast<char>((value >> (8 * k)) & 0xffu);
-  out_.append(bytes, 8);
+  append(bytes, 8);
 }
 
 void ByteWriter::f64(double value) {
@@ -40,13 +40,13 @@ void ByteWriter::f64(double value) {
 
 void ByteWriter::bytes(std::string_view text) {
   u64(text.size());
-  out_.append(text.data(), text.size());
+  append(text.data(), text.size());
 }
 
 void ByteWriter::doubles(std::span<const double> values) {
   u64(values.size());
   if constexpr (kLittleEndianHost) {
-    if (!values.empty()) out_.append(reinterpret_cast<const char*>(values.data()), values.size_bytes());
+    append(reinterpret_cast<const char*>(values.data()), values.size_bytes());
   } else {
     for (const double v : values) f64(v);
   }
@@ -61,6 +61,11 @@ void ByteReader::need(std::uint64_t size) const {
     fail("truncated or corrupt (needs " + std::to_string(size) + " more bytes at offset " + std::to_string(position_) +
          ", has " + std::to_string(data_.size() - position_) + ")");
   }
+}
+
+void ByteReader::copy_out(void* to, std::size_t n) {
+  if (n > 0) std::memcpy(to, data_.data() + position_, n);  // empty: no pointer
+  position_ += n;
 }
 
 std::uint8_t ByteReader::u8() {

@@ -5,11 +5,19 @@
 /// length-prefixed byte strings and double arrays, and an FNV-1a 64 checksum. The byte order
 /// is fixed, not the host's, so a file means the same on every machine; every read is
 /// bounds-checked and its errors name the source (the file).
+///
+/// The same writer and reader carry the bytes that never leave the program (a part on the
+/// MPI wire between ranks of one binary, the gmsh child's answer through its pipe): those may
+/// add `native` values and arrays, trivially copyable types in the host's own layout (structs
+/// included), which a file never holds. A counting writer sizes a buffer before the real pass,
+/// so that packing a large message never doubles it.
 #include <cstdint>
 #include <limits>
 #include <span>
 #include <string>
 #include <string_view>
+#include <type_traits>
+#include <vector>
 
 namespace stagger::io_detail {
 
@@ -27,7 +35,19 @@ std::uint64_t fnv1a64(std::span<const double> values, std::uint64_t hash = kFnv1
 
 class ByteWriter {
  public:
-  void u8(std::uint8_t value) { out_.push_back(static_cast<char>(value)); }
+  /// A writer that only counts the bytes it would write (`size()`), holding none.
+  static ByteWriter counter() {
+    ByteWriter w;
+    w.counting_ = true;
+    return w;
+  }
+  void reserve(std::size_t bytes) { out_.reserve(bytes); }
+  /// The bytes written (or counted) so far.
+  std::size_t size() const { return size_; }
+  void u8(std::uint8_t value) {
+    const char byte = static_cast<char>(value);
+    append(&byte, 1);
+  }
   void u64(std::uint64_t value);
   void i64(std::int64_t value) { u64(static_cast<std::uint64_t>(value)); }
   void f64(double value);
@@ -36,12 +56,31 @@ class ByteWriter {
   /// Count (u64) then the values.
   void doubles(std::span<const double> values);
   /// The bytes as they are, no length (magic numbers, nested blocks of known length).
-  void raw(std::string_view text) { out_.append(text.data(), text.size()); }
+  void raw(std::string_view text) { append(text.data(), text.size()); }
+  /// A value in the host's layout (same-program transport only, see above).
+  template <class T>
+  void native(const T& value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    append(reinterpret_cast<const char*>(&value), sizeof value);
+  }
+  /// Count (u64) then the values in the host's layout (same-program transport only).
+  template <class T>
+  void native_array(const std::vector<T>& values) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    u64(values.size());
+    append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+  }
   const std::string& data() const { return out_; }
   std::string take() { return std::move(out_); }
 
  private:
+  void append(const char* bytes, std::size_t n) {
+    size_ += n;
+    if (!counting_ && n > 0) out_.append(bytes, n);
+  }
   std::string out_;
+  std::size_t size_ = 0;
+  bool counting_ = false;
 };
 
 class ByteReader {
@@ -59,6 +98,20 @@ class ByteReader {
   /// Reads a double array of exactly `out.size()` values into `out`; a count that differs
   /// is an error naming `what`.
   void doubles(std::span<double> out, std::string_view what);
+  /// A value in the host's layout, as ByteWriter::native wrote it.
+  template <class T>
+  void native(T& value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    need(sizeof value);
+    copy_out(&value, sizeof value);
+  }
+  /// An array as ByteWriter::native_array wrote it; its count is bounded by the bytes left.
+  template <class T>
+  void native_array(std::vector<T>& values, std::string_view what) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    values.resize(count(sizeof(T), what));
+    copy_out(values.data(), values.size() * sizeof(T));
+  }
   /// Skips a double array, returning its count.
   std::uint64_t skip_doubles();
   std::size_t position() const { return position_; }
@@ -75,6 +128,7 @@ class ByteReader {
 
  private:
   void need(std::uint64_t size) const;
+  void copy_out(void* to, std::size_t n);  // n bytes already checked by need() or count()
   std::string_view data_;
   std::size_t position_ = 0;
   std::string source_;

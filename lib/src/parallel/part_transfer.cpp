@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "io/byte_stream.hpp"
 #include "parallel/distributed_access.hpp"
-#include "parallel/wire.hpp"
 #include "stagger/error.hpp"
 #include "state/clock.hpp"
 #include "state/state_table.hpp"
@@ -16,6 +16,12 @@
 namespace stagger::parallel {
 
 namespace {
+
+using io_detail::ByteReader;
+using io_detail::ByteWriter;
+
+// What the errors of a malformed part name (a bug, never the user's input).
+constexpr const char* kPartSource = "internal: the part received from rank 0";
 
 // The large arrays of a part (its global numbers and its mesh's arrays), in the order they
 // travel: one message each, straight into the receiver's vectors, so that no packed copy of
@@ -48,72 +54,66 @@ void receive_array(std::vector<T>& v, MPI_Comm comm) {
   MPI_Recv(v.data(), count, MPI_BYTE, 0, kHaloTag, comm, MPI_STATUS_IGNORE);
 }
 
-void pack_mesh_names(Packer& out, const Mesh& local) {
-  out.put(local.source);
-  out.value(static_cast<std::uint64_t>(local.region_names.size()));
-  for (const std::string& name : local.region_names) out.put(name);
-  out.value(static_cast<std::uint64_t>(local.tags.size()));
-  for (const BoundaryTag& tag : local.tags) out.put(tag.name), out.put(tag.edges), out.put(tag.points);
+void pack_mesh_names(ByteWriter& out, const Mesh& local) {
+  out.bytes(local.source);
+  out.u64(local.region_names.size());
+  for (const std::string& name : local.region_names) out.bytes(name);
+  out.u64(local.tags.size());
+  for (const BoundaryTag& tag : local.tags) out.bytes(tag.name), out.native_array(tag.edges), out.native_array(tag.points);
 }
 
-void unpack_mesh_names(Unpacker& in, Mesh& m) {
-  in.get(m.source);
-  std::uint64_t n = 0;
-  in.value(n);
-  m.region_names.resize(n);
-  for (std::string& name : m.region_names) in.get(name);
-  in.value(n);
-  m.tags.resize(n);
-  for (BoundaryTag& tag : m.tags) in.get(tag.name), in.get(tag.edges), in.get(tag.points);
+void unpack_mesh_names(ByteReader& in, Mesh& m) {
+  m.source = in.bytes();
+  m.region_names.resize(in.count(8, "region names"));
+  for (std::string& name : m.region_names) name = in.bytes();
+  m.tags.resize(in.count(24, "boundary tags"));
+  for (BoundaryTag& tag : m.tags)
+    tag.name = in.bytes(), in.native_array(tag.edges, "tag edges"), in.native_array(tag.points, "tag points");
 }
 
 // The flags that decide which arrays exist and which kernel variants run: the whole
 // problem's (a part may lack the region or boundary that sets one).
-void pack_flags(Packer& out, const Simulation::Impl& g) {
-  out.value(static_cast<const StepConfig&>(g));
+void pack_flags(ByteWriter& out, const Simulation::Impl& g) {
+  out.native(static_cast<const StepConfig&>(g));
 }
 
-void unpack_flags(Unpacker& in, Simulation::Impl& s) {
-  in.value(static_cast<StepConfig&>(s));
+void unpack_flags(ByteReader& in, Simulation::Impl& s) {
+  in.native(static_cast<StepConfig&>(s));
 }
 
 // The whole problem's clock, in the one format of checkpoints (state/clock.hpp).
-void pack_clock(Packer& out, const Simulation::Impl& g) {
-  io_detail::ByteWriter clock;
-  write_clock(clock, g);
-  out.put(clock.data());
+void pack_clock(ByteWriter& out, const Simulation::Impl& g) {
+  write_clock(out, g);
 }
 
-void unpack_clock(Unpacker& in, Simulation::Impl& s) {
-  std::string bytes;
-  in.get(bytes);
-  io_detail::ByteReader clock(bytes, "the clock of a part received from rank 0");
-  static_cast<Clock&>(s) = read_clock(clock);
+void unpack_clock(ByteReader& in, Simulation::Impl& s) {
+  static_cast<Clock&>(s) = read_clock(in);
 }
 
 // The walls as fixed lines (the no-crossing check): the whole problem's, so that a point is
 // tested against every wall as in the serial run (number_walls_locally()).
-void pack_walls(Packer& out, const Simulation::Impl& g) {
-  out.put(g.wall_edges);
-  out.put(g.wall_rays);
+void pack_walls(ByteWriter& out, const Simulation::Impl& g) {
+  out.native_array(g.wall_edges);
+  out.native_array(g.wall_rays);
   const WallGrid& w = g.wall_grid;
-  out.value(w.x0), out.value(w.y0), out.value(w.x1), out.value(w.y1), out.value(w.inv_h), out.value(w.nx);
-  out.value(w.ny);
-  out.put(w.cell_begin);
-  out.put(w.items);
+  out.native(w.x0), out.native(w.y0), out.native(w.x1), out.native(w.y1), out.native(w.inv_h), out.native(w.nx);
+  out.native(w.ny);
+  out.native_array(w.cell_begin);
+  out.native_array(w.items);
 }
 
-void unpack_walls(Unpacker& in, Simulation::Impl& s) {
-  in.get(s.wall_edges);
-  in.get(s.wall_rays);
-  in.value(s.wall_grid.x0), in.value(s.wall_grid.y0), in.value(s.wall_grid.x1), in.value(s.wall_grid.y1);
-  in.value(s.wall_grid.inv_h), in.value(s.wall_grid.nx), in.value(s.wall_grid.ny);
-  in.get(s.wall_grid.cell_begin);
-  in.get(s.wall_grid.items);
+void unpack_walls(ByteReader& in, Simulation::Impl& s) {
+  in.native_array(s.wall_edges, "wall edges");
+  in.native_array(s.wall_rays, "wall rays");
+  WallGrid& w = s.wall_grid;
+  in.native(w.x0), in.native(w.y0), in.native(w.x1), in.native(w.y1), in.native(w.inv_h), in.native(w.nx);
+  in.native(w.ny);
+  in.native_array(w.cell_begin, "wall grid cells");
+  in.native_array(w.items, "wall grid items");
 }
 
 // The packed rest, in the order set_up_part() reads it.
-void pack_part(Packer& out, const Simulation::Impl& g, const Mesh& local) {
+void pack_part(ByteWriter& out, const Simulation::Impl& g, const Mesh& local) {
   pack_mesh_names(out, local);
   pack_flags(out, g);
   pack_clock(out, g);
@@ -123,13 +123,12 @@ void pack_part(Packer& out, const Simulation::Impl& g, const Mesh& local) {
 }  // namespace
 
 std::string pack_part(const Simulation::Impl& g, const Mesh& local) {
-  Packer out;
-  out.counting = true;
+  ByteWriter size = ByteWriter::counter();
+  pack_part(size, g, local);
+  ByteWriter out;
+  out.reserve(size.size());
   pack_part(out, g, local);
-  out.data.reserve(out.size);
-  out.counting = false;
-  pack_part(out, g, local);
-  return std::move(out.data);
+  return out.take();
 }
 
 void send_part(const Simulation::Impl& g, const Part& part, int to, MPI_Comm comm) {
@@ -155,15 +154,15 @@ std::string receive_part(Part& part, Mesh& mesh, MPI_Comm comm) {
 }
 
 std::string unpack_mesh_names(std::string& packed, Mesh& mesh) {
-  Unpacker names(packed);
+  ByteReader names(packed, kPartSource);
   unpack_mesh_names(names, mesh);
-  std::string rest = packed.substr(names.at);
+  std::string rest = packed.substr(names.position());
   std::string().swap(packed);
   return rest;
 }
 
 std::unique_ptr<Simulation> set_up_part(Problem problem, std::string rest) {
-  Unpacker in(rest);
+  ByteReader in(rest, kPartSource);
   // ALE: the part gets no built-in remap (its work space would be the size of the part's
   // mesh): the distributed one (distributed_remap.cpp) runs the whole problem's on rank 0.
   // The part's ALE arrays come with the state.

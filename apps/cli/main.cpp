@@ -66,7 +66,7 @@ struct Entry {
   Command command;
 };
 
-// The subcommands. `stagger bench` (the benchmark issue) registers here.
+// The subcommands; `bench` is the harness of apps/bench/.
 const std::vector<Entry>& commands() {
   static const std::vector<Entry> table = {
       {"run", stagger::cli::run_command},

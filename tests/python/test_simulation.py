@@ -69,7 +69,7 @@ def test_run_until_lands_on_the_time():
 
 
 def summary_numbers(summary):
-    wall_clock = {"wall_seconds", "loop_seconds", "zone_cycles_per_second", "threads", "scene"}
+    wall_clock = {"wall_seconds", "loop_seconds", "zone_cycles_per_second", "threads"}
     return {k: v for k, v in summary.items() if k not in wall_clock}
 
 
@@ -146,3 +146,35 @@ def test_dumps_and_exact_solutions(tmp_path):
     x = np.array([0.1, 0.9])
     states = exact.sample(x, sim.time)
     assert np.array_equal(states["density"], [1.0, 0.125])  # outside the waves at t = 0.05
+
+
+def test_progress_is_a_line_on_stderr(capsys):
+    sim = stagger.Simulation(small_sod())
+    sim.run(progress=True)
+    err = capsys.readouterr().err
+    assert err.startswith("\rstagger: cycle 1,") and err.endswith(f"cycle {sim.cycle}, t = 0.05 of 0.05 (100%), dt "
+                                                                  f"{sim.dt:.3g}\n")
+
+
+def test_the_gil_is_released_while_stepping():
+    import threading
+    import time
+    sim = stagger.Simulation(small_sod(**{"mesh.refine": 4}))
+    stamps = []
+    done = threading.Event()
+
+    def count():  # Python code: it runs only while the other thread does not hold the GIL
+        while not done.is_set():
+            stamps.append(time.perf_counter())
+            time.sleep(0.001)
+
+    counter = threading.Thread(target=count)
+    counter.start()
+    start = time.perf_counter()
+    sim.run()
+    end = time.perf_counter()
+    done.set()
+    counter.join()
+    if end - start < 0.1:
+        pytest.skip("the run was too short to tell")
+    assert any(start + 0.03 < t < end - 0.03 for t in stamps)  # it ran in the middle of the run

@@ -19,5 +19,6 @@ for zones, seconds, error, cycles in rows:
 zones, seconds, errors, _ = zip(*rows)
 figure, (left, right) = plt.subplots(1, 2, figsize=(9, 3.6), constrained_layout=True)
 left.loglog(zones, errors, "o-"), left.set(xlabel="zones", ylabel="L1 density error", title="convergence")
+left.xaxis.set_minor_locator(matplotlib.ticker.NullLocator()), left.set_xticks(zones, [str(z) for z in zones])
 right.loglog(seconds, errors, "o-"), right.set(xlabel="run time (s)", title="work against precision")
 figure.savefig(sys.argv[1], dpi=120) if len(sys.argv) > 1 else plt.show()

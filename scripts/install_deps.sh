@@ -4,6 +4,7 @@
 set -euo pipefail
 packages=(cmake ninja-build g++ pkg-config libcgal-dev libgmsh-dev libvtk9-dev libgtest-dev
           libtomlplusplus-dev libmuparser-dev libeigen3-dev python3 python3-matplotlib clang-format
+          python3-dev python3-numpy python3-pybind11 python3-pytest
           libopenmpi-dev openmpi-bin libmetis-dev)
 missing=()
 for p in "${packages[@]}"; do

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <string>
 #include <utility>
 
 #include "simulation_handle.hpp"
@@ -65,11 +66,16 @@ std::string advance(py::object self, std::optional<double> until, py::object cal
   };
   try {
     while (!simulation.finished() && simulation.time() < t_stop) {
+      const double t_before = simulation.time();
       try {
         py::gil_scoped_release release;
         simulation.step(t_stop);
       } catch (const stagger::Error& error) {
         failure = error.what();
+        break;
+      }
+      if (!(simulation.time() > t_before)) {  // never loop on a step that does not advance
+        failure = "the step at t = " + std::to_string(t_before) + " did not advance the time";
         break;
       }
       const int every = handle.control.history_every;

@@ -50,8 +50,8 @@ TEST(WaterAir, DensityConvergesWithoutAPressureOvershootAtTheContact) {
   std::vector<TubeErrors> ladder;
   for (int refine : {1, 2, 4}) ladder.push_back(run_tube(refine, exact));
   for (std::size_t k = 0; k < ladder.size(); ++k) {
-    std::printf("refine %d: L1(rho) = %.6g, max p of the air / p* = %.6f, audit %.3g\n", 1 << k,
-                ladder[k].l1_density, ladder[k].max_pressure_right / exact.star_pressure(), ladder[k].energy_error);
+    std::printf("refine %d: L1(rho) = %.6g, max p of the air / p* = %.6f, audit %.3g\n", 1 << k, ladder[k].l1_density,
+                ladder[k].max_pressure_right / exact.star_pressure(), ladder[k].energy_error);
     EXPECT_LT(ladder[k].max_pressure_right, 1.01 * exact.star_pressure());
     EXPECT_LT(std::abs(ladder[k].energy_error), 1e-12);
   }

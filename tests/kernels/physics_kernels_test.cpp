@@ -45,6 +45,27 @@ TEST(EosKernels, IdealGas) {
   EXPECT_FALSE(eos::evaluate(g, -1.0, 3.0, ps));  // negative density: outside the domain
 }
 
+TEST(EosKernels, StiffenedGasWater) {
+  // Water of the water-air shock tube: gamma 4.4, p_inf 6e8 Pa, at rho 1000 and p 1e9 Pa.
+  const StiffenedGas g{4.4, 6e8};
+  const double rho = 1000, p = 1e9;
+  const double e = (p + 4.4 * 6e8) / (3.4 * rho);  // inverted by hand: e = (p + gamma p_inf) / ((gamma - 1) rho)
+  eos::PressureSound ps{};
+  ASSERT_TRUE(eos::evaluate(g, rho, e, ps));
+  EXPECT_NEAR(ps.p, p, 1e-15 * 4.4 * 6e8 * 4);
+  EXPECT_NEAR(ps.c2, 4.4 * (p + 6e8) / rho, 1e-14 * ps.c2);  // gamma (p + p_inf) / rho
+  EXPECT_NEAR(ps.c2, numerical_c2(g, rho, e), 1e-7 * ps.c2);
+  // p_inf = 0 is the ideal gas, bit for bit.
+  eos::PressureSound gas{};
+  ASSERT_TRUE(eos::evaluate(StiffenedGas{1.4, 0.0}, 2.5, 3.0, ps));
+  ASSERT_TRUE(eos::evaluate(IdealGas{1.4}, 2.5, 3.0, gas));
+  EXPECT_EQ(ps.p, gas.p);
+  // Tension down to -p_inf is inside the domain; beyond it c^2 < 0 and the state is outside.
+  EXPECT_TRUE(eos::evaluate(g, rho, (-0.5e8 + 4.4 * 6e8) / (3.4 * rho), ps));
+  EXPECT_FALSE(eos::evaluate(g, rho, (-7e8 + 4.4 * 6e8) / (3.4 * rho), ps));
+  EXPECT_FALSE(eos::evaluate(g, -1.0, e, ps));
+}
+
 TEST(EosKernels, MieGruneisenOnAndOffTheHugoniot) {
   // Copper-like constants.
   MieGruneisen m;

@@ -127,6 +127,7 @@ TEST(OptionTableDocs, AChangedOrMissingBlockIsDetected) {
       "<!-- begin generated: ideal_gas options -->\n<!-- end generated: ideal_gas options -->\n"
       "<!-- begin generated: mie_gruneisen options -->\n<!-- end generated: mie_gruneisen options -->\n"
       "<!-- begin generated: jwl options -->\n<!-- end generated: jwl options -->\n"
+      "<!-- begin generated: stiffened_gas options -->\n<!-- end generated: stiffened_gas options -->\n"
       "<!-- begin generated: ale options -->\n<!-- end generated: ale options -->\n";
   const std::string generated = stagger::with_generated_option_tables(document);
   EXPECT_EQ(generated.find("stale"), std::string::npos);
@@ -158,6 +159,7 @@ TEST(OptionTableRows, DefaultsAreAdmissibleAndKeysUnique) {
   check(stagger::ideal_gas_option_table());
   check(stagger::mie_gruneisen_option_table());
   check(stagger::jwl_option_table());
+  check(stagger::stiffened_gas_option_table());
   check(stagger::ale_option_table());
 }
 

@@ -31,8 +31,15 @@ struct Jwl {
   double rho0 = 0;        ///< unreacted density
 };
 
+/// Stiffened gas (Harlow and Amsden 1971; Menikoff and Plohr, Rev. Mod. Phys. 61, 1989):
+/// p = (gamma - 1) rho e - gamma p_inf, for water and other liquids; p_inf = 0 is the ideal gas.
+struct StiffenedGas {
+  double gamma = 4.4;  ///< > 1
+  double p_inf = 0;    ///< stiffening pressure, >= 0
+};
+
 /// One of the equations of state above (std::visit or std::get_if to inspect).
-using EquationOfState = std::variant<IdealGas, MieGruneisen, Jwl>;
+using EquationOfState = std::variant<IdealGas, MieGruneisen, Jwl, StiffenedGas>;
 
 /// Elastic-plastic strength, the linear-hardening model (scene `model = "linear_hardening"`, the
 /// default): shear modulus mu and von Mises yield stress Y = Y0 + H eps_p with linear isotropic
@@ -77,7 +84,7 @@ double eos_pressure(const EquationOfState& eos, double rho, double e);
 double eos_sound_speed_squared(const EquationOfState& eos, double rho, double e);
 /// Specific internal energy giving pressure p at density rho (inverse of eos_pressure in e).
 double eos_energy_from_pressure(const EquationOfState& eos, double rho, double p);
-/// Name of the EOS kind ("ideal_gas", "mie_gruneisen", "jwl").
+/// Name of the EOS kind ("ideal_gas", "mie_gruneisen", "jwl", "stiffened_gas").
 std::string eos_kind(const EquationOfState& eos);
 
 }  // namespace stagger

@@ -101,6 +101,8 @@ const OptionTable<IdealGas>& ideal_gas_option_table();
 const OptionTable<MieGruneisen>& mie_gruneisen_option_table();
 /// [[material]] with eos = "jwl": Jwl (section "jwl").
 const OptionTable<Jwl>& jwl_option_table();
+/// [[material]] with eos = "stiffened_gas": StiffenedGas (section "stiffened_gas").
+const OptionTable<StiffenedGas>& stiffened_gas_option_table();
 
 /// `document` with every generated block replaced by the current table: a block is the text
 /// between a line `<!-- begin generated: SECTION options -->` and the next line

@@ -45,6 +45,33 @@ class ExactRiemann {
   double rho_star_left_ = 0, rho_star_right_ = 0;
 };
 
+/// One side of a two-material Riemann problem: a stiffened gas p = (gamma - 1) rho e - gamma p_inf
+/// (p_inf = 0: an ideal gas).
+struct StiffenedSide {
+  GasState state;
+  double gamma = 1.4, p_inf = 0;
+};
+
+/// Exact solution of the 1D Riemann problem between two stiffened gases, each with its own gamma
+/// and p_inf: Toro's ch. 4 solver with every pressure shifted by its side's p_inf (the stiffened
+/// gas is an ideal gas in p + p_inf; Ivings, Causon and Toro, Int. J. Numer. Meth. Fluids 28,
+/// 1998; Plohr, AIAA J. 26, 1988). Interface at x0 at t = 0; sample() as ExactRiemann's.
+class StiffenedRiemann {
+ public:
+  StiffenedRiemann(StiffenedSide left, StiffenedSide right, double x0 = 0.5);
+  GasState sample(double x, double t) const;
+  double star_pressure() const { return p_star_; }
+  double star_velocity() const { return u_star_; }
+  double star_density_left() const { return rho_star_[0]; }
+  double star_density_right() const { return rho_star_[1]; }
+
+ private:
+  StiffenedSide side_[2];
+  double x0_;
+  double p_star_ = 0, u_star_ = 0;
+  double c_[2] = {0, 0}, rho_star_[2] = {0, 0};
+};
+
 /// A reference solution: fills error norms and diagnostics for the current state.
 using Reference = std::function<void(const Simulation&, NamedValues& errors, NamedValues& diagnostics)>;
 

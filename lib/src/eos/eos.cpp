@@ -50,8 +50,10 @@ std::string eos_kind(const EquationOfState& model) {
       return "ideal_gas";
     case 1:
       return "mie_gruneisen";
-    default:
+    case 2:
       return "jwl";
+    default:
+      return "stiffened_gas";
   }
 }
 

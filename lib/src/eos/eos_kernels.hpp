@@ -50,4 +50,12 @@ inline bool evaluate(const Jwl& j, double rho, double e, PressureSound& out) {
   return out.c2 > 0.0;
 }
 
+// Stiffened gas: c^2 = (gamma - 1)(e + p/rho) = gamma (p + p_inf)/rho, positive while p > -p_inf
+// (docs/algorithm.md §3).
+inline bool evaluate(const StiffenedGas& g, double rho, double e, PressureSound& out) {
+  out.p = (g.gamma - 1.0) * rho * e - g.gamma * g.p_inf;
+  out.c2 = g.gamma * (out.p + g.p_inf) / rho;
+  return rho > 0.0 && out.c2 > 0.0;
+}
+
 }  // namespace stagger::eos

@@ -41,9 +41,11 @@ template struct OptionTable<EnergyDeposit>;
 template struct Option<IdealGas>;
 template struct Option<MieGruneisen>;
 template struct Option<Jwl>;
+template struct Option<StiffenedGas>;
 template struct OptionTable<IdealGas>;
 template struct OptionTable<MieGruneisen>;
 template struct OptionTable<Jwl>;
+template struct OptionTable<StiffenedGas>;
 
 // ---- the tables ----
 
@@ -216,6 +218,18 @@ const OptionTable<Jwl>& jwl_option_table() {
   return table;
 }
 
+const OptionTable<StiffenedGas>& stiffened_gas_option_table() {
+  using G = StiffenedGas;
+  static const OptionTable<StiffenedGas> table{
+      "stiffened_gas",
+      "StiffenedGas",
+      {
+          required_number<&G::gamma>("gamma", above(1), "-", "p = (gamma - 1) rho e - gamma p_inf (§3)"),
+          required_number<&G::p_inf>("p_inf", at_least(0), "pressure", "stiffening pressure; 0: an ideal gas (§3)"),
+      }};
+  return table;
+}
+
 // ---- validation of the run control ----
 
 void RunControl::validate() const {
@@ -244,8 +258,10 @@ std::string generated_table(const std::string& section) {
   if (section == ideal_gas_option_table().section) return ideal_gas_option_table().markdown();
   if (section == mie_gruneisen_option_table().section) return mie_gruneisen_option_table().markdown();
   if (section == jwl_option_table().section) return jwl_option_table().markdown();
+  if (section == stiffened_gas_option_table().section) return stiffened_gas_option_table().markdown();
   throw Error("generated option table: unknown section '" + section +
-              "' (known: numerics, time, output, deposit, material.strength, ideal_gas, mie_gruneisen, jwl, ale)");
+              "' (known: numerics, time, output, deposit, material.strength, ideal_gas, mie_gruneisen, jwl, "
+              "stiffened_gas, ale)");
 }
 
 }  // namespace
@@ -253,8 +269,8 @@ std::string generated_table(const std::string& section) {
 std::string with_generated_option_tables(const std::string& document) {
   static const std::string begin_mark = "<!-- begin generated: ", end_mark = "<!-- end generated: ",
                            close = " options -->";
-  std::vector<std::string> sections = {"numerics",  "time",          "output", "deposit",
-                                       "ideal_gas", "mie_gruneisen", "jwl",    "ale"};
+  std::vector<std::string> sections = {"numerics",      "time", "output",        "deposit", "ideal_gas",
+                                       "mie_gruneisen", "jwl",  "stiffened_gas", "ale"};
   for (const StrengthTableText& table : strength_option_table_texts()) sections.push_back(table.section);
   std::vector<std::string> seen;
   std::istringstream in(document);

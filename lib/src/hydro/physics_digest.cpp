@@ -125,6 +125,10 @@ void material_entries(const Material& mat, Digest& d) {
     d.value("materials", k + "omega", jwl->omega);
     d.value("materials", k + "rho0", jwl->rho0);
   }
+  if (const auto* sg = std::get_if<StiffenedGas>(&mat.eos)) {
+    d.value("materials", k + "gamma", sg->gamma);
+    d.value("materials", k + "p_inf", sg->p_inf);
+  }
   d.value("materials", k + "min_energy", mat.min_energy);
   if (mat.strength) {
     // The default model adds no entry, so digests of existing scenes stay as they were.

@@ -37,6 +37,7 @@ void validate_material(const Material& m) {
   if (const auto* g = std::get_if<IdealGas>(&m.eos)) ideal_gas_option_table().validate(*g, where);
   if (const auto* mg = std::get_if<MieGruneisen>(&m.eos)) mie_gruneisen_option_table().validate(*mg, where);
   if (const auto* j = std::get_if<Jwl>(&m.eos)) jwl_option_table().validate(*j, where);
+  if (const auto* sg = std::get_if<StiffenedGas>(&m.eos)) stiffened_gas_option_table().validate(*sg, where);
   if (m.strength) validate_strength_model(*m.strength, where + "strength.");
   if (m.burn) {
     require(m.burn->detonation_speed > 0, where + "burn detonation_speed must be > 0");

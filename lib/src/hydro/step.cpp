@@ -69,6 +69,7 @@ ZoneModel zone_model(const Material& material) {
   if (const auto* g = std::get_if<IdealGas>(&material.eos)) m.edge_gamma_factor = (g->gamma + 1) / 4;
   if (const auto* mg = std::get_if<MieGruneisen>(&material.eos)) m.edge_gamma_factor = mg->s / 2;
   if (const auto* j = std::get_if<Jwl>(&material.eos)) m.edge_gamma_factor = (j->omega + 2) / 4;
+  if (const auto* sg = std::get_if<StiffenedGas>(&material.eos)) m.edge_gamma_factor = (sg->gamma + 1) / 4;
   return m;
 }
 

@@ -2,6 +2,7 @@
 #include <string>
 
 #include "io/text_format.hpp"
+#include "output/material_totals.hpp"
 #include "stagger/output.hpp"
 #include "stagger/simulation.hpp"
 
@@ -16,6 +17,19 @@ std::string named_values_object(const NamedValues& values, const std::string& in
             (i + 1 < values.size() ? ",\n" : "\n");
   }
   return text + indent + "}";
+}
+// {"<name>": {"mass": ..., "volume": ..., "internal_energy": ..., "kinetic_energy": ...}, ...}
+std::string materials_object(const Simulation& simulation) {
+  using io_detail::json_number;
+  const std::vector<MaterialTotals> totals = material_totals(simulation);
+  std::string text = "{\n";
+  for (std::size_t m = 0; m < totals.size(); ++m) {
+    const MaterialTotals& t = totals[m];
+    text += "    " + io_detail::json_string(t.name) + ": {\"mass\": " + json_number(t.mass) +
+            ", \"volume\": " + json_number(t.volume) + ", \"internal_energy\": " + json_number(t.internal_energy) +
+            ", \"kinetic_energy\": " + json_number(t.kinetic_energy) + "}" + (m + 1 < totals.size() ? ",\n" : "\n");
+  }
+  return text + "  }";
 }
 }  // namespace
 
@@ -67,6 +81,7 @@ void write_summary(const std::string& path, const Simulation& simulation, const 
   text += "    \"relative_error\": " + json_number(energy.relative_error) + "\n";
   text += "  },\n";
   text += "  \"momentum\": [" + json_number(momentum[0]) + ", " + json_number(momentum[1]) + "],\n";
+  text += "  \"materials\": " + materials_object(simulation) + ",\n";
   text += "  \"errors\": " + named_values_object(summary.errors, "  ") + ",\n";
   text += "  \"diagnostics\": " + named_values_object(summary.diagnostics, "  ") + "\n";
   text += "}\n";

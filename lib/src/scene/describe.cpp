@@ -32,6 +32,8 @@ std::string eos_text(const EquationOfState& eos) {
   if (const auto* mg = std::get_if<MieGruneisen>(&eos))
     return "Mie-Gruneisen, " + mie_gruneisen_option_table().echo(*mg);
   if (const auto* jwl = std::get_if<Jwl>(&eos)) return "JWL, " + jwl_option_table().echo(*jwl);
+  if (const auto* sg = std::get_if<StiffenedGas>(&eos))
+    return "stiffened gas, " + stiffened_gas_option_table().echo(*sg);
   return "?";
 }
 

@@ -121,7 +121,7 @@ void read_scene_section(Section& root, const std::string& file, Problem& problem
 Material read_material(Section& section) {
   Material material;
   material.name = section.string("name");
-  const std::string eos = section.choice("eos", {"ideal_gas", "mie_gruneisen", "jwl"});
+  const std::string eos = section.choice("eos", {"ideal_gas", "mie_gruneisen", "jwl", "stiffened_gas"});
   if (eos == "ideal_gas") {
     IdealGas gas;
     read_options(section, ideal_gas_option_table(), gas);
@@ -130,6 +130,10 @@ Material read_material(Section& section) {
     MieGruneisen mg;
     read_options(section, mie_gruneisen_option_table(), mg);
     material.eos = mg;
+  } else if (eos == "stiffened_gas") {
+    StiffenedGas sg;
+    read_options(section, stiffened_gas_option_table(), sg);
+    material.eos = sg;
   } else {
     Jwl jwl;
     read_options(section, jwl_option_table(), jwl);

@@ -59,7 +59,8 @@ void pack_mesh_names(ByteWriter& out, const Mesh& local) {
   out.u64(local.region_names.size());
   for (const std::string& name : local.region_names) out.bytes(name);
   out.u64(local.tags.size());
-  for (const BoundaryTag& tag : local.tags) out.bytes(tag.name), out.native_array(tag.edges), out.native_array(tag.points);
+  for (const BoundaryTag& tag : local.tags)
+    out.bytes(tag.name), out.native_array(tag.edges), out.native_array(tag.points);
 }
 
 void unpack_mesh_names(ByteReader& in, Mesh& m) {

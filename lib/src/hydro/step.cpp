@@ -93,20 +93,26 @@ T* data_or_null(std::vector<T>& v) {
 }
 
 ZoneStateOutput state_output(Simulation::Impl& s) {
-  return {s.area.data(),    s.rho.data(),     s.p.data(),       s.c.data(),
-          s.grad_xx.data(), s.grad_xy.data(), s.grad_yx.data(), s.grad_yy.data()};
+  return {.area = s.area.data(),
+          .rho = s.rho.data(),
+          .p = s.p.data(),
+          .c = s.c.data(),
+          .grad_xx = s.grad_xx.data(),
+          .grad_xy = s.grad_xy.data(),
+          .grad_yx = s.grad_yx.data(),
+          .grad_yy = s.grad_yy.data()};
 }
 
 PointInput point_input(const Simulation::Impl& s) {
-  return {s.point_corner_begin.data(),
-          s.point_corners.data(),
-          s.corner_fx.data(),
-          s.corner_fy.data(),
-          s.point_mass.data(),
-          s.x.data(),
-          s.y.data(),
-          s.vx.data(),
-          s.vy.data()};
+  return {.point_corner_begin = s.point_corner_begin.data(),
+          .point_corners = s.point_corners.data(),
+          .fx = s.corner_fx.data(),
+          .fy = s.corner_fy.data(),
+          .mass = s.point_mass.data(),
+          .x = s.x.data(),
+          .y = s.y.data(),
+          .vx = s.vx.data(),
+          .vy = s.vy.data()};
 }
 
 }  // namespace
@@ -167,40 +173,45 @@ void Simulation::Impl::recompute_state() {
 // t_eval; writes the corner forces. Returns the lowest failing zone's code.
 std::int64_t Simulation::Impl::zone_forces(const double* px, const double* py, double h_position, const double* qvx,
                                            const double* qvy, double dt_half, double t_eval) {
-  const ZoneForceInput in{zone_corner_begin.data(),
-                          corner_point.data(),
-                          px,
-                          py,
-                          h_position,
-                          x.data(),
-                          y.data(),
-                          vx.data(),
-                          vy.data(),
-                          qvx,
-                          qvy,
-                          corner_fx.data(),
-                          corner_fy.data(),
-                          zone_mass.data(),
-                          e.data(),
-                          data_or_null(sxx),
-                          data_or_null(syy),
-                          data_or_null(sxy),
-                          data_or_null(plastic),
-                          data_or_null(grad_xx),
-                          data_or_null(grad_xy),
-                          data_or_null(grad_yx),
-                          data_or_null(grad_yy),
-                          data_or_null(burn),
-                          data_or_null(lighting_time),
-                          data_or_null(burn_length),
-                          energy_source(*this),
-                          dt_half,
-                          t_eval,
-                          data_or_null(corner_mass),
-                          data_or_null(heat_rate)};
-  const ZoneForceOutput out{corner_fx.data(),       corner_fy.data(),      q.data(),
-                            data_or_null(rho_half), data_or_null(c_half),  data_or_null(sxx_half),
-                            data_or_null(syy_half), data_or_null(sxy_half)};
+  const ZoneForceInput in{.zone_corner_begin = zone_corner_begin.data(),
+                          .corner_point = corner_point.data(),
+                          .px = px,
+                          .py = py,
+                          .h_position = h_position,
+                          .x = x.data(),
+                          .y = y.data(),
+                          .vx = vx.data(),
+                          .vy = vy.data(),
+                          .qvx = qvx,
+                          .qvy = qvy,
+                          .f_prev_x = corner_fx.data(),
+                          .f_prev_y = corner_fy.data(),
+                          .zone_mass = zone_mass.data(),
+                          .e = e.data(),
+                          .sxx = data_or_null(sxx),
+                          .syy = data_or_null(syy),
+                          .sxy = data_or_null(sxy),
+                          .plastic = data_or_null(plastic),
+                          .grad_xx = data_or_null(grad_xx),
+                          .grad_xy = data_or_null(grad_xy),
+                          .grad_yx = data_or_null(grad_yx),
+                          .grad_yy = data_or_null(grad_yy),
+                          .burn = data_or_null(burn),
+                          .lighting_time = data_or_null(lighting_time),
+                          .burn_length = data_or_null(burn_length),
+                          .energy_source = energy_source(*this),
+                          .dt_half = dt_half,
+                          .t_eval = t_eval,
+                          .subzone_mass = data_or_null(corner_mass),
+                          .heat_rate = data_or_null(heat_rate)};
+  const ZoneForceOutput out{.fx = corner_fx.data(),
+                            .fy = corner_fy.data(),
+                            .q = q.data(),
+                            .rho_half = data_or_null(rho_half),
+                            .c_half = data_or_null(c_half),
+                            .sxx_half = data_or_null(sxx_half),
+                            .syy_half = data_or_null(syy_half),
+                            .sxy_half = data_or_null(sxy_half)};
   const HydroOptions& o = problem.options;
   std::int64_t failure = kNoFailure;
   for_each_range(*this, [&](const ZoneRange& r, const auto& eos, const ZoneModel& m) {
@@ -223,18 +234,18 @@ std::int64_t Simulation::Impl::zone_forces(const double* px, const double* py, d
 // (qvx, qvy), and the density and sound speed Z1 left in rho_half, c_half.
 void Simulation::Impl::edge_forces(const double* px, const double* py, const double* qvx, const double* qvy) {
   const HydroOptions& o = problem.options;
-  const EdgeViscosityInput in{zone_corner_begin.data(),
-                              corner_point.data(),
-                              continuation.data(),
-                              px,
-                              py,
-                              qvx,
-                              qvy,
-                              rho_half.data(),
-                              c_half.data(),
-                              o.edge_c1,
-                              o.edge_c2,
-                              o.edge_limiter};
+  const EdgeViscosityInput in{.zone_corner_begin = zone_corner_begin.data(),
+                              .corner_point = corner_point.data(),
+                              .continuation = continuation.data(),
+                              .x = px,
+                              .y = py,
+                              .ux = qvx,
+                              .uy = qvy,
+                              .rho = rho_half.data(),
+                              .C = c_half.data(),
+                              .c1 = o.edge_c1,
+                              .c2 = o.edge_c2,
+                              .limiter = o.edge_limiter};
   for_each_range(*this, [&](const ZoneRange& r, const auto&, const ZoneModel& m) {
     add_edge_viscosity_forces(in, r.begin, r.end, m.edge_gamma_factor, corner_fx.data(), corner_fy.data());
   });
@@ -262,19 +273,19 @@ void Simulation::Impl::weight_rz_forces(const double* px, double h_position) {
 // across their edges (ghost layer 1), exchanged after the last step, so they are the serial ones.
 void Simulation::Impl::heat_flux_rates_now() {
   const HydroOptions& o = problem.options;
-  const HeatFluxInput in{zone_corner_begin.data(),
-                         corner_point.data(),
-                         heat_neighbour.data(),
-                         x.data(),
-                         y.data(),
-                         vx.data(),
-                         vy.data(),
-                         rho.data(),
-                         c.data(),
-                         e.data(),
-                         zone_mass.data(),
-                         o.heat_flux_c1,
-                         o.heat_flux_c2};
+  const HeatFluxInput in{.zone_corner_begin = zone_corner_begin.data(),
+                         .corner_point = corner_point.data(),
+                         .neighbour = heat_neighbour.data(),
+                         .x = x.data(),
+                         .y = y.data(),
+                         .vx = vx.data(),
+                         .vy = vy.data(),
+                         .rho = rho.data(),
+                         .C = c.data(),
+                         .e = e.data(),
+                         .zone_mass = zone_mass.data(),
+                         .c1 = o.heat_flux_c1,
+                         .c2 = o.heat_flux_c2};
   const Index nz = mesh().num_zones();
   with_geometry(rz, [&](auto g) {
     heat_flux_conductivity<decltype(g)>(in, 0, nz, heat_kappa.data(), heat_cx.data(), heat_cy.data());
@@ -366,39 +377,44 @@ void Simulation::Impl::correct_velocity(double dt, double t_new) {
 
 // Z2 (steps 7, 8, 9) over every range; on success the next dt candidate is in dt_next.
 std::int64_t Simulation::Impl::end_of_step(double dt, double t_new) {
-  const ZoneEndInput in{zone_corner_begin.data(),
-                        corner_point.data(),
-                        x.data(),
-                        y.data(),
-                        data_or_null(x_lo),
-                        data_or_null(y_lo),
-                        data_or_null(x_half),
-                        data_or_null(y_half),
-                        vx.data(),
-                        vy.data(),
-                        vx_new.data(),
-                        vy_new.data(),
-                        corner_fx.data(),
-                        corner_fy.data(),
-                        zone_mass.data(),
-                        e.data(),
-                        data_or_null(sxx),
-                        data_or_null(syy),
-                        data_or_null(sxy),
-                        data_or_null(sxx_half),
-                        data_or_null(syy_half),
-                        data_or_null(sxy_half),
-                        data_or_null(plastic),
-                        data_or_null(burn),
-                        data_or_null(lighting_time),
-                        data_or_null(burn_length),
-                        energy_source(*this),
-                        dt,
-                        t_new,
-                        data_or_null(heat_rate)};
-  const ZoneEndOutput out{e_new.data(),           data_or_null(source_energy), data_or_null(sxx_new),
-                          data_or_null(syy_new),  data_or_null(sxy_new),       data_or_null(plastic_new),
-                          data_or_null(burn_new), state_output(*this)};
+  const ZoneEndInput in{.zone_corner_begin = zone_corner_begin.data(),
+                        .corner_point = corner_point.data(),
+                        .x = x.data(),
+                        .y = y.data(),
+                        .x_lo = data_or_null(x_lo),
+                        .y_lo = data_or_null(y_lo),
+                        .x_half = data_or_null(x_half),
+                        .y_half = data_or_null(y_half),
+                        .vx = vx.data(),
+                        .vy = vy.data(),
+                        .ux = vx_new.data(),
+                        .uy = vy_new.data(),
+                        .fx = corner_fx.data(),
+                        .fy = corner_fy.data(),
+                        .zone_mass = zone_mass.data(),
+                        .e = e.data(),
+                        .sxx = data_or_null(sxx),
+                        .syy = data_or_null(syy),
+                        .sxy = data_or_null(sxy),
+                        .sxx_half = data_or_null(sxx_half),
+                        .syy_half = data_or_null(syy_half),
+                        .sxy_half = data_or_null(sxy_half),
+                        .plastic = data_or_null(plastic),
+                        .burn = data_or_null(burn),
+                        .lighting_time = data_or_null(lighting_time),
+                        .burn_length = data_or_null(burn_length),
+                        .energy_source = energy_source(*this),
+                        .dt = dt,
+                        .t_new = t_new,
+                        .heat_rate = data_or_null(heat_rate)};
+  const ZoneEndOutput out{.e_new = e_new.data(),
+                          .source_energy = data_or_null(source_energy),
+                          .sxx_new = data_or_null(sxx_new),
+                          .syy_new = data_or_null(syy_new),
+                          .sxy_new = data_or_null(sxy_new),
+                          .plastic_new = data_or_null(plastic_new),
+                          .burn_new = data_or_null(burn_new),
+                          .state = state_output(*this)};
   const HydroOptions& o = problem.options;
   DtChoice choice, ghost_choice;
   std::int64_t failure = kNoFailure;

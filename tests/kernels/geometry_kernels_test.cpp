@@ -179,7 +179,7 @@ TEST(ForceKernels, EdgeViscosityOnUniformCompression) {
   const EdgeViscosityInput in{corner_begin, corner_point, continuation, x.data(), y.data(), ux.data(),
                               uy.data(),    rho_z,        C_z,          c1,       c2,       false};
   double fx[4] = {0, 0, 0, 0}, fy[4] = {0, 0, 0, 0};
-  add_edge_viscosity_forces(in, 0, 1, g1, fx, fy);
+  edge_forces_loop(in, 0, 1, g1, fx, fy);
   const double du = eps * s;
   const double f = rho * (c2 * g1 * du + std::sqrt(c2 * c2 * g1 * g1 * du * du + c1 * c1 * C * C)) * (s / 2);
   for (int k = 0; k < 4; ++k) {
@@ -188,7 +188,7 @@ TEST(ForceKernels, EdgeViscosityOnUniformCompression) {
   }
   // An expanding zone gets nothing.
   for (int k = 0; k < 4; ++k) ux[k] = -ux[k], uy[k] = -uy[k], fx[k] = fy[k] = 0;
-  add_edge_viscosity_forces(in, 0, 1, g1, fx, fy);
+  edge_forces_loop(in, 0, 1, g1, fx, fy);
   for (int k = 0; k < 4; ++k) {
     EXPECT_EQ(fx[k], 0.0);
     EXPECT_EQ(fy[k], 0.0);

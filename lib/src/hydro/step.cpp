@@ -220,10 +220,10 @@ std::int64_t Simulation::Impl::zone_forces(const double* px, const double* py, d
     const std::int64_t code = with_geometry(rz, [&](auto g) {
       using G = decltype(g);
       if (plain)
-        return all_quads ? force_zones<4, G, true>(in, o, m, eos, r.begin, r.end, out)
-                         : force_zones<0, G, true>(in, o, m, eos, r.begin, r.end, out);
-      return all_quads ? force_zones<4, G>(in, o, m, eos, r.begin, r.end, out)
-                       : force_zones<0, G>(in, o, m, eos, r.begin, r.end, out);
+        return all_quads ? zone_forces_loop<4, G, true>(in, o, m, eos, r.begin, r.end, out)
+                         : zone_forces_loop<0, G, true>(in, o, m, eos, r.begin, r.end, out);
+      return all_quads ? zone_forces_loop<4, G>(in, o, m, eos, r.begin, r.end, out)
+                       : zone_forces_loop<0, G>(in, o, m, eos, r.begin, r.end, out);
     });
     if (!r.ghost) failure = std::min(failure, code);
   });
@@ -247,7 +247,7 @@ void Simulation::Impl::edge_forces(const double* px, const double* py, const dou
                               .c2 = o.edge_c2,
                               .limiter = o.edge_limiter};
   for_each_range(*this, [&](const ZoneRange& r, const auto&, const ZoneModel& m) {
-    add_edge_viscosity_forces(in, r.begin, r.end, m.edge_gamma_factor, corner_fx.data(), corner_fy.data());
+    edge_forces_loop(in, r.begin, r.end, m.edge_gamma_factor, corner_fx.data(), corner_fy.data());
   });
 }
 
@@ -262,10 +262,10 @@ void Simulation::Impl::evaluate_forces_now() {
 
 // rz: the area-weighted corner forces made true ones (docs/algorithm.md §19).
 void Simulation::Impl::weight_rz_forces(const double* px, double h_position) {
-  weight_rz_corner_forces(mesh().num_corners(), corner_point.data(), px, x.data(), vx.data(), h_position,
-                          axis_points.size(), axis_points.data(), axis_corner_begin.data(), axis_corner.data(),
-                          axis_ref_a.data(), axis_ref_b.data(), axis_moment.data(), corner_fx.data(), corner_fy.data(),
-                          axis_ax.data(), axis_ay.data());
+  weight_rz_forces_loop(mesh().num_corners(), corner_point.data(), px, x.data(), vx.data(), h_position,
+                        axis_points.size(), axis_points.data(), axis_corner_begin.data(), axis_corner.data(),
+                        axis_ref_a.data(), axis_ref_b.data(), axis_moment.data(), corner_fx.data(), corner_fy.data(),
+                        axis_ax.data(), axis_ay.data());
 }
 
 // The heat flux on the state at t^n (docs/algorithm.md §21): every zone's conductivity and
@@ -343,7 +343,8 @@ void Simulation::Impl::external_forces(double t_half) {
 void Simulation::Impl::predict_velocity(double dt, double t_half) {
   const Index np = mesh().num_points();
   const double h = 0.5 * dt;
-  predict_points(point_input(*this), np, h, data_or_null(x_half), data_or_null(y_half), vx_star.data(), vy_star.data());
+  predict_velocity_loop(point_input(*this), np, h, data_or_null(x_half), data_or_null(y_half), vx_star.data(),
+                        vy_star.data());
   if (has_external) {
     external_forces(t_half);
     add_external_velocity(np, h, point_mass.data(), ext_fx.data(), ext_fy.data(), data_or_null(src_fx),
@@ -361,9 +362,9 @@ void Simulation::Impl::predict_velocity(double dt, double t_half) {
 void Simulation::Impl::correct_velocity(double dt, double t_new) {
   const bool external = has_external;
   const VelocityLowParts lo{data_or_null(vx_lo), data_or_null(vy_lo), data_or_null(vx_lo_new), data_or_null(vy_lo_new)};
-  correct_points(point_input(*this), mesh().num_points(), dt, external ? ext_fx.data() : nullptr,
-                 external ? ext_fy.data() : nullptr, external ? data_or_null(src_fx) : nullptr,
-                 external ? data_or_null(src_fy) : nullptr, lo, vx_new.data(), vy_new.data());
+  correct_velocity_loop(point_input(*this), mesh().num_points(), dt, external ? ext_fx.data() : nullptr,
+                        external ? ext_fy.data() : nullptr, external ? data_or_null(src_fx) : nullptr,
+                        external ? data_or_null(src_fy) : nullptr, lo, vx_new.data(), vy_new.data());
   if (rz)
     move_axis_points(axis_points.size(), axis_points.data(), dt, axis_ax.data(), axis_ay.data(), vx.data(), vy.data(),
                      vx_new.data(), vy_new.data(), lo);
@@ -425,10 +426,10 @@ std::int64_t Simulation::Impl::end_of_step(double dt, double t_new) {
     const std::int64_t code = with_geometry(rz, [&](auto g) {
       using G = decltype(g);
       if (plain)
-        return all_quads ? finish_zones<4, G, true>(in, o, m, eos, r.begin, r.end, out, target)
-                         : finish_zones<0, G, true>(in, o, m, eos, r.begin, r.end, out, target);
-      return all_quads ? finish_zones<4, G>(in, o, m, eos, r.begin, r.end, out, target)
-                       : finish_zones<0, G>(in, o, m, eos, r.begin, r.end, out, target);
+        return all_quads ? end_of_step_loop<4, G, true>(in, o, m, eos, r.begin, r.end, out, target)
+                         : end_of_step_loop<0, G, true>(in, o, m, eos, r.begin, r.end, out, target);
+      return all_quads ? end_of_step_loop<4, G>(in, o, m, eos, r.begin, r.end, out, target)
+                       : end_of_step_loop<0, G>(in, o, m, eos, r.begin, r.end, out, target);
     });
     if (!r.ghost) failure = std::min(failure, code);
   });
@@ -458,8 +459,8 @@ void Simulation::Impl::account_boundary_work(double dt) {
 
 // Commit: x^{n+1} = x^n + dt v_bar (the expression of Z2), then the new state replaces the old.
 void Simulation::Impl::commit(double dt) {
-  commit_positions(mesh().num_points(), dt, vx.data(), vy.data(), vx_new.data(), vy_new.data(), x.data(), y.data(),
-                   data_or_null(x_lo), data_or_null(y_lo));
+  commit_loop(mesh().num_points(), dt, vx.data(), vy.data(), vx_new.data(), vy_new.data(), x.data(), y.data(),
+              data_or_null(x_lo), data_or_null(y_lo));
   swap_new_into_current(*this, *this);  // v, e, S, plastic strain, burn, low parts (the state table)
   have_previous_forces = true;
 }

@@ -20,7 +20,7 @@ std::vector<Index> heat_flux_neighbours(const Mesh& m, const std::vector<int>& z
 
 template <class Geometry>
 void heat_flux_conductivity(const HeatFluxInput& input, Index begin, Index end, double* kappa, double* cx, double* cy) {
-  const HeatFluxInput in = input;  // thread-private below, as in force_zones
+  const HeatFluxInput in = input;  // thread-private below, as in zone_forces_loop
 #pragma omp parallel for schedule(static) firstprivate(in) if (end - begin > kParallelMin)
   for (Index z = begin; z < end; ++z) {
     const Index b = in.zone_corner_begin[z];

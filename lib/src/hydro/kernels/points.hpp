@@ -18,8 +18,8 @@ struct PointInput {
 };
 
 // P1: x^{n+1/2} = x^n + h v^n (when x_half is given) and v* = v^n + h F / M_p, h = dt/2.
-inline void predict_points(const PointInput& in, Index np, double h, double* x_half, double* y_half, double* vx_star,
-                           double* vy_star) {
+inline void predict_velocity_loop(const PointInput& in, Index np, double h, double* x_half, double* y_half,
+                                  double* vx_star, double* vy_star) {
   const double *x = in.x, *y = in.y, *vx = in.vx, *vy = in.vy, *M = in.mass;
 #pragma omp parallel for schedule(static) if (np > kParallelMin)
   for (Index p = 0; p < np; ++p) {
@@ -46,9 +46,9 @@ inline void add_external_velocity(Index np, double h, const double* mass, const 
 
 // P2: v_free = v^n + dt (F + F_ext + F_src) / M_p (ext and src may be null); compensated, v^n
 // + (dt F / M_p + lo) with its round-off as the new low part.
-inline void correct_points(const PointInput& in, Index np, double dt, const double* ext_fx, const double* ext_fy,
-                           const double* src_fx, const double* src_fy, const VelocityLowParts& lo, double* vx_new,
-                           double* vy_new) {
+inline void correct_velocity_loop(const PointInput& in, Index np, double dt, const double* ext_fx, const double* ext_fy,
+                                  const double* src_fx, const double* src_fy, const VelocityLowParts& lo,
+                                  double* vx_new, double* vy_new) {
   const double *vx = in.vx, *vy = in.vy, *M = in.mass;
   const bool external = ext_fx != nullptr, sources = src_fx != nullptr;
   const auto force = [&](Index p, double& Fx, double& Fy) {
@@ -81,8 +81,8 @@ inline void correct_points(const PointInput& in, Index np, double dt, const doub
 // geometry, so the committed positions are the ones checked. With low parts (x_lo, y_lo not
 // null; docs/algorithm.md §20) the same rounded sum x^n + (dt v_bar + lo), whose round-off
 // becomes the new low part.
-inline void commit_positions(Index np, double dt, const double* vx, const double* vy, const double* ux,
-                             const double* uy, double* x, double* y, double* x_lo, double* y_lo) {
+inline void commit_loop(Index np, double dt, const double* vx, const double* vy, const double* ux, const double* uy,
+                        double* x, double* y, double* x_lo, double* y_lo) {
   if (x_lo) {
 #pragma omp parallel for schedule(static) if (np > kParallelMin)
     for (Index p = 0; p < np; ++p) {

@@ -61,11 +61,11 @@ template <int N = 0>
 // k_c / s_c with s_c the sum of the radii of the corner's two neighbours in its zone
 // (their radial stretch; k_c = rho^0 A_c^0 s_c^0), which is what the same corners give at
 // the points next to the axis.
-inline void weight_rz_corner_forces(Index nc, const Index* corner_point, const double* px, const double* x,
-                                    const double* vx, double h, std::size_t axis_count, const Index* axis_points,
-                                    const Index* axis_corner_begin, const Index* axis_corner, const Index* axis_ref_a,
-                                    const Index* axis_ref_b, const double* axis_moment, double* fx, double* fy,
-                                    double* axis_ax, double* axis_ay) {
+inline void weight_rz_forces_loop(Index nc, const Index* corner_point, const double* px, const double* x,
+                                  const double* vx, double h, std::size_t axis_count, const Index* axis_points,
+                                  const Index* axis_corner_begin, const Index* axis_corner, const Index* axis_ref_a,
+                                  const Index* axis_ref_b, const double* axis_moment, double* fx, double* fy,
+                                  double* axis_ax, double* axis_ay) {
   for (std::size_t i = 0; i < axis_count; ++i) {
     double mass = 0, Fx = 0, Fy = 0;
     for (Index j = axis_corner_begin[i]; j < axis_corner_begin[i + 1]; ++j) {

@@ -9,9 +9,9 @@
 
 namespace stagger {
 
-void add_edge_viscosity_forces(const EdgeViscosityInput& input, Index begin, Index end, double gamma_factor, double* fx,
-                               double* fy) {
-  const EdgeViscosityInput in = input;  // thread-private below, as in force_zones
+void edge_forces_loop(const EdgeViscosityInput& input, Index begin, Index end, double gamma_factor, double* fx,
+                      double* fy) {
+  const EdgeViscosityInput in = input;  // thread-private below, as in zone_forces_loop
   const Index* cb = in.zone_corner_begin;
   const Index* cp = in.corner_point;
   const double *px = in.x, *py = in.y, *wx = in.ux, *wy = in.uy;

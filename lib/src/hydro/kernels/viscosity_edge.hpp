@@ -38,7 +38,7 @@ struct EdgeViscosityInput {
 // Adds the edge forces of the zones [begin, end), all of one material whose quadratic
 // coefficient factor is gamma_factor ((gamma+1)/4 for an ideal gas), into (fx, fy) per corner.
 // Each zone writes only its own corners.
-void add_edge_viscosity_forces(const EdgeViscosityInput& in, Index begin, Index end, double gamma_factor, double* fx,
-                               double* fy);
+void edge_forces_loop(const EdgeViscosityInput& in, Index begin, Index end, double gamma_factor, double* fx,
+                      double* fy);
 
 }  // namespace stagger

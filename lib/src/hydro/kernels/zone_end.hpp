@@ -118,7 +118,7 @@ struct ZoneEndOutput {
 };
 
 // Z2 needs none of strength, burn, energy source, heat flux or the positions' low parts:
-// finish_zones<N, G, true> then gives the same bits without testing for them per zone.
+// end_of_step_loop<N, G, true> then gives the same bits without testing for them per zone.
 inline bool plain_zone_end(const ZoneEndInput& in, const ZoneModel& m) {
   return !m.strength && !m.burn && !in.energy_source && !in.heat_rate && !in.x_lo;
 }
@@ -127,13 +127,13 @@ inline bool plain_zone_end(const ZoneEndInput& in, const ZoneModel& m) {
 // `choice`; returns the lowest zone's failure code, kNoFailure if none. kPlain: plain_zone_end
 // holds, and the tests for what it excludes are compiled out.
 template <int N, class Geometry, bool kPlain = false, class Eos>
-std::int64_t finish_zones(const ZoneEndInput& input, const HydroOptions& o, const ZoneModel& m, const Eos& eos,
-                          Index begin, Index end, const ZoneEndOutput& output, DtChoice& choice) {
+std::int64_t end_of_step_loop(const ZoneEndInput& input, const HydroOptions& o, const ZoneModel& m, const Eos& eos,
+                              Index begin, Index end, const ZoneEndOutput& output, DtChoice& choice) {
   std::int64_t failure = kNoFailure;
   DtChoice best;
 #pragma omp parallel if (end - begin > kParallelMin)
   {
-    // Thread-private copies, as in force_zones, and the loop's pointers and flags taken from
+    // Thread-private copies, as in zone_forces_loop, and the loop's pointers and flags taken from
     // them inside the region: they stay in registers or the thread's frame.
     const ZoneEndInput in = input;
     const ZoneEndOutput out = output;

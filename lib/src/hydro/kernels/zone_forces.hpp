@@ -55,7 +55,7 @@ struct ZoneForceOutput {
 };
 
 // Z1 needs none of strength, burn, energy source, heat flux, tensor q or subzonal pressures
-// (the gas with bulk q, hourglass or edge viscosity): force_zones<N, G, true> then gives the
+// (the gas with bulk q, hourglass or edge viscosity): zone_forces_loop<N, G, true> then gives the
 // same bits without testing for them per zone (docs/benchmarks.md, "Lagrangian step speed").
 inline bool plain_zone_forces(const ZoneForceInput& in, const HydroOptions& o, const ZoneModel& m) {
   const bool subzonal_hourglass = o.hourglass == Hourglass::subzonal || o.hourglass == Hourglass::subzonal_triangles;
@@ -67,8 +67,8 @@ inline bool plain_zone_forces(const ZoneForceInput& in, const HydroOptions& o, c
 // lowest zone's failure code, kNoFailure if none. kPlain: plain_zone_forces holds, and the
 // tests for what it excludes are compiled out.
 template <int N, class Geometry, bool kPlain = false, class Eos>
-std::int64_t force_zones(const ZoneForceInput& input, const HydroOptions& o, const ZoneModel& m, const Eos& eos,
-                         Index begin, Index end, const ZoneForceOutput& output) {
+std::int64_t zone_forces_loop(const ZoneForceInput& input, const HydroOptions& o, const ZoneModel& m, const Eos& eos,
+                              Index begin, Index end, const ZoneForceOutput& output) {
   // Thread-private copies: the loop's stores cannot alias them, so their fields stay in
   // registers (through the caller's references every field would be reloaded per zone).
   const ZoneForceInput in = input;

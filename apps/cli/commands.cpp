@@ -40,12 +40,14 @@ options:
                         is taken as a string)
   --threads N           number of OpenMP threads (default: OpenMP's choice)
   --restart CHECKPOINT  continue from a checkpoint written by an earlier run
+  --replace             take an output directory that holds another scene's results
+                        by removing them (without it such a directory is refused)
   --quiet               no progress line and no summary (errors still go to stderr)
   -h, --help            this help
 
 The output directory is locked for the run (a second run into it fails, naming the
-first one's pid); a fresh run removes the previous run's <scene>.pvd and
-<scene>_NNNNNN.vtu there first. Warnings about the set-up (docs/scenes.md) are printed
+first one's pid); a fresh run removes the previous run's <scene>.pvd,
+<scene>_NNNNNN.vtu and checkpoint there first. Nothing else is removed. Warnings about the set-up (docs/scenes.md) are printed
 on stderr before the first step.
 
 A progress line (cycle, time, dt, ETA) is shown on stderr: refreshed in place on a
@@ -53,6 +55,11 @@ terminal, one line every 10 s otherwise (logs). At the end
 a summary is printed: cycles, final time, zone-cycles per second, the energy audit and
 any error norms. Exit status: 0 if the run reached time.end, 1 otherwise (the reason is
 one line on stderr and in summary.json's "status").
+
+SIGINT (Ctrl-C) or SIGTERM ends the run after the cycle in progress: a checkpoint and a
+final dump are written, summary.json's status is "interrupted", and the exit status is
+130 (SIGINT) or 143 (SIGTERM). A second signal ends the program at once (every file
+written is whole: each is written under a private name and renamed).
 )";
 
 const char* const check_help =
@@ -172,6 +179,7 @@ int run_command(const std::vector<std::string>& args) {
                              {"--set", "", true, true},
                              {"--threads", "", true, false},
                              {"--restart", "", true, false},
+                             {"--replace", "", false, false},
                              {"--quiet", "", false, false}});
   const std::string scene_path = single_positional(arguments, "stagger run", "scene file");
   if (arguments.has("--threads")) {
@@ -202,6 +210,8 @@ int run_command(const std::vector<std::string>& args) {
   });
   malloc_trim(0);             // the mesh build's temporaries, before the set-up (docs/parallel.md, "Memory")
   control.progress = !quiet;  // every 0.2 s on a terminal, a line every 10 s in a log
+  control.replace = arguments.flag("--replace");
+  control.handle_signals = true;
   for (const auto& note : scene.notes)
     if (!quiet && root) std::cerr << "stagger: note: " << note << "\n";
   if (root) print_warnings(scene);
@@ -236,6 +246,10 @@ int run_command(const std::vector<std::string>& args) {
     for (const auto& [name, value] : summary.diagnostics)
       std::cout << "  diagnostic " << name << " = " << number(value) << "\n";
     std::cout << "  output: " << control.output_directory << "\n";
+  }
+  if (result.signal != 0) {  // every rank stops alike, at the same cycle
+    if (root) std::cerr << "stagger: " << result.message << "\n";
+    return 128 + result.signal;
   }
   if (!result.completed) throw CollectiveError("run stopped: " + result.message);  // every rank stops alike
   return 0;

@@ -1,6 +1,7 @@
 // The `stagger` executable: exit codes, one-line errors, mesh and run outputs.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -14,6 +15,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "support/files.hpp"
 #include "support/scene_toml.hpp"
@@ -333,6 +335,67 @@ TEST_F(Cli, ASecondRunIntoTheSameDirectoryFailsWhileTheFirstRuns) {
   text = tiny_scene;
   const Result third = stagger("run " + write("long.toml", text) + " --out " + out.string());
   EXPECT_EQ(third.status, 0) << third.err;
+}
+
+// Starts `stagger ARGS...` (stdout and stderr into files of `directory`), returns its pid.
+pid_t start_stagger(const std::vector<std::string>& args, const fs::path& directory) {
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int out = ::open((directory / "stdout.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int err = ::open((directory / "stderr.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(out, 1);
+    ::dup2(err, 2);
+    std::vector<char*> argv;
+    const std::string binary = stagger_binary();
+    argv.push_back(const_cast<char*>(binary.c_str()));
+    for (const auto& arg : args) argv.push_back(const_cast<char*>(arg.c_str()));
+    argv.push_back(nullptr);
+    ::execv(binary.c_str(), argv.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+// A signal ends a run cleanly: the cycle finishes, a checkpoint and a final dump are
+// written, the status says "interrupted", the exit status is 128 + the signal, and the
+// checkpoint continues the run.
+TEST_F(Cli, SigtermAndSigintEndARunWithACheckpointAndAFinalDump) {
+  std::string text = tiny_scene;
+  text.replace(text.find("end = 0.1"), 9, "end = 1000.0");  // runs until stopped
+  text.replace(text.find("dump_interval = 0.05"), 20, "dump_interval = 0.0");
+  text.replace(text.find("nx = 10\n"), 8, "nx = 400\n");
+  const std::string path = write("long.toml", text);
+  for (const int number : {SIGTERM, SIGINT}) {
+    const fs::path out = directory_ / (number == SIGTERM ? "term" : "int");
+    const pid_t pid = start_stagger({"run", path, "--out", out.string(), "--quiet", "--threads", "1"}, directory_);
+    ASSERT_GT(pid, 0);
+    // Wait until the run is in its time loop (its first dump is written), then signal it.
+    for (int i = 0; i < 1000 && !fs::exists(out / "history.csv"); ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    ASSERT_EQ(::kill(pid, number), 0);
+    int status = 0;
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    ASSERT_TRUE(WIFEXITED(status)) << "killed by the signal instead of ending the run";
+    EXPECT_EQ(WEXITSTATUS(status), 128 + number);
+    const std::string err = read_text(directory_ / "stderr.txt");
+    EXPECT_NE(err.find(number == SIGTERM ? "interrupted by SIGTERM at cycle" : "interrupted by SIGINT at cycle"),
+              std::string::npos)
+        << err;
+    EXPECT_NE(err.find("--restart " + (out / "tiny.checkpoint").string()), std::string::npos) << err;
+    EXPECT_NE(read_text(out / "summary.json").find("\"status\": \"interrupted\""), std::string::npos);
+    ASSERT_TRUE(fs::exists(out / "tiny.checkpoint"));
+    EXPECT_TRUE(fs::exists(out / "tiny_000001.vtu")) << "no final dump";
+    // The checkpoint continues the run, here to a nearer end.
+    const std::size_t at = err.find(", t = ");
+    ASSERT_NE(at, std::string::npos);
+    const double t_stop = std::stod(err.substr(at + 6));
+    const Result resumed =
+        stagger("run " + path + " --out " + out.string() + " --restart " + (out / "tiny.checkpoint").string() +
+                " --set time.end=" + std::to_string(t_stop * 1.01) + " --quiet");
+    EXPECT_EQ(resumed.status, 0) << resumed.err;
+    EXPECT_NE(read_text(out / "summary.json").find("\"status\": \"completed\""), std::string::npos);
+  }
 }
 
 TEST_F(Cli, RunRejectsBadThreadCounts) {

@@ -46,7 +46,8 @@ inline std::vector<std::string> temporary_files(const std::filesystem::path& dir
   std::vector<std::string> names;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(directory)) {
     const std::string name = entry.path().filename().string();
-    if (name.find(".tmp.") != std::string::npos || name.find("write-probe") != std::string::npos) {
+    if (name.find(".tmp.") != std::string::npos || name.find("stagger-tmp.") != std::string::npos ||
+        name.find("write-probe") != std::string::npos) {
       names.push_back(name);
     }
   }

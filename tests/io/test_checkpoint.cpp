@@ -3,6 +3,7 @@
 // other physics and names what differs, and an end time that must lie after the checkpoint.
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <string_view>
 
 #include "io_test_support.hpp"
@@ -119,6 +120,59 @@ TEST(Checkpoint, AnyFlippedBitIsDetectedAndTheFileNamed) {
   EXPECT_GT(tried, 100);
   // The intact file still resumes.
   EXPECT_EQ(resume_error(scratch, io_test::sod_problem(40, 0.1), path), "");
+}
+
+// A checkpoint with a valid checksum but driver fields no run writes (a crafted file): each is
+// refused, naming the field, before anything reaches the new run's files.
+TEST(Checkpoint, CraftedDriverFieldsWithAValidChecksumAreRefused) {
+  ScratchDirectory scratch("ckpt_crafted");
+  const auto [path, t10] = checkpoint_of_cycle_10(scratch, io_test::sod_problem(40, 0.1));
+  const std::string good = read_text(path);
+  const std::size_t magic = 19;
+  const std::size_t fields = magic + 16 + little_endian_u64(std::string_view(good).substr(magic + 8, 8));
+  auto put_u64 = [](std::string& data, std::size_t at, std::uint64_t value) {
+    for (int k = 0; k < 8; ++k) data[at + k] = static_cast<char>((value >> (8 * k)) & 0xffu);
+  };
+  auto reseal = [&](std::string data) {
+    data.resize(data.size() - 8);
+    const std::uint64_t sum = fnv1a(data);
+    data.append(8, '\0');
+    put_u64(data, data.size() - 8, sum);
+    return data;
+  };
+  auto message_for = [&](const std::string& data) {
+    const std::string crafted = scratch.file("crafted.checkpoint");
+    write_file_atomically(crafted, reseal(data));
+    return resume_error(scratch, io_test::sod_problem(40, 0.1), crafted);
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::string bad = good;
+  std::uint64_t bits;
+  std::memcpy(&bits, &nan, 8);
+  put_u64(bad, fields, bits);  // next dump time
+  EXPECT_TRUE(contains(message_for(bad), "impossible next dump time")) << message_for(bad);
+  bad = good;
+  put_u64(bad, fields + 16, static_cast<std::uint64_t>(-5));  // dump count
+  EXPECT_TRUE(contains(message_for(bad), "impossible dump count")) << message_for(bad);
+  // A .pvd entry that climbs out of the output directory: count 1, dump count 1.
+  bad = good;
+  put_u64(bad, fields + 16, 1);
+  put_u64(bad, fields + 56, 1);
+  std::string entry(8, '\0');
+  std::memcpy(entry.data(), &t10, 8);
+  const std::string climb = "../../../../etc/passwd";
+  entry.append(8, '\0');
+  put_u64(entry, 8, climb.size());
+  entry += climb;
+  bad.insert(fields + 64, entry);
+  EXPECT_TRUE(contains(message_for(bad), "impossible .pvd entry '../../../../etc/passwd'")) << message_for(bad);
+  // History rows that are not numbers.
+  bad = good;
+  const std::size_t history = fields + 64;
+  const std::uint64_t length = little_endian_u64(std::string_view(bad).substr(history, 8));
+  bad[history + 8 + length - 3] = '<';
+  EXPECT_TRUE(contains(message_for(bad), "impossible history table")) << message_for(bad);
+  EXPECT_EQ(message_for(good), "");  // resealing alone changes nothing
 }
 
 TEST(Checkpoint, ChangedGammaIsRefusedAndNamed) {

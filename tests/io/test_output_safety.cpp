@@ -102,7 +102,7 @@ TEST(OutputSafety, ANewRunRemovesThePreviousRunsDumpsOfTheSameSceneOnly) {
     std::ofstream(out / name) << "stale";
   }
   std::ofstream(out / "sod_io.pvd") << "stale";
-  for (const char* keep : {"other_000001.vtu", "other.pvd", "sod_io_notes.vtu", "sod_io_12.vtu", "notes.txt"})
+  for (const char* keep : {"other_000001.vtu", "sod_io_notes.vtu", "sod_io_12.vtu", "notes.txt", ".notes.tmp.999999"})
     std::ofstream(out / keep) << "keep";
   Simulation simulation(io_test::sod_problem(10, 0.05));
   ASSERT_TRUE(run(simulation, quick_control(out)).completed);
@@ -117,7 +117,7 @@ TEST(OutputSafety, ANewRunRemovesThePreviousRunsDumpsOfTheSameSceneOnly) {
     }
   }
   EXPECT_EQ(series, 2);
-  for (const char* keep : {"other_000001.vtu", "other.pvd", "sod_io_notes.vtu", "sod_io_12.vtu", "notes.txt"})
+  for (const char* keep : {"other_000001.vtu", "sod_io_notes.vtu", "sod_io_12.vtu", "notes.txt", ".notes.tmp.999999"})
     EXPECT_EQ(io_test::read_text((out / keep).string()), "keep") << keep;
 }
 

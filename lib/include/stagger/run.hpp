@@ -32,7 +32,14 @@ struct RunControl {
   /// = 1e-9 would otherwise write files until the disk is full). See estimated_dumps().
   long max_dumps = 10000;
   bool progress = false;  ///< a progress line on stderr
-  Reference reference;    ///< errors/diagnostics for summary.json (may be empty)
+  /// Take an output directory that holds another scene's results by removing them (the CLI's
+  /// --replace); without it such a directory is refused (docs/output.md).
+  bool replace = false;
+  /// SIGINT and SIGTERM end the run cleanly: the cycle finishes, a checkpoint and a final dump
+  /// are written, the status says so (RunResult::signal). For programs that own their signals
+  /// (the CLI); off by default, so that an embedding program's handlers are left alone.
+  bool handle_signals = false;
+  Reference reference;  ///< errors/diagnostics for summary.json (may be empty)
   /// Checks the ranges of output_option_table() (option_table.hpp); throws stagger::Error
   /// naming the option. run() and resume() call it.
   void validate() const;
@@ -42,6 +49,7 @@ struct RunControl {
 struct RunResult {
   bool completed = false;  ///< t_end reached without error
   std::string message;     ///< the error that stopped the run, if any
+  int signal = 0;          ///< SIGINT or SIGTERM if one ended the run early (handle_signals)
   RunSummary summary;      ///< what summary.json holds beyond the state (timings, errors)
 };
 

@@ -13,6 +13,7 @@
 #include <chrono>
 #include <climits>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -24,6 +25,7 @@
 #include <string_view>
 #include <vector>
 
+#include "driver/output_directory.hpp"
 #include "io/atomic_file.hpp"
 #include "io/byte_stream.hpp"
 #include "stagger/error.hpp"
@@ -39,6 +41,43 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
+
+// ---- SIGINT / SIGTERM (RunControl::handle_signals): the handler only notes the signal; the
+// loop ends after the cycle in progress. SA_RESETHAND: a second signal acts at once (the
+// files stay whole: every write is atomic). ----
+
+volatile std::sig_atomic_t pending_signal = 0;
+
+extern "C" void note_signal(int number) {
+  pending_signal = number;
+}
+
+/// Installs the handler for the life of a run and puts the previous handlers back after it.
+class SignalGuard {
+ public:
+  explicit SignalGuard(bool enabled) : enabled_(enabled) {
+    if (!enabled_) return;
+    pending_signal = 0;
+    struct sigaction action {};
+    action.sa_handler = note_signal;
+    action.sa_flags = SA_RESETHAND;
+    sigemptyset(&action.sa_mask);
+    ::sigaction(SIGINT, &action, &previous_int_);
+    ::sigaction(SIGTERM, &action, &previous_term_);
+  }
+  ~SignalGuard() {
+    if (!enabled_) return;
+    ::sigaction(SIGINT, &previous_int_, nullptr);
+    ::sigaction(SIGTERM, &previous_term_, nullptr);
+  }
+  SignalGuard(const SignalGuard&) = delete;
+  SignalGuard& operator=(const SignalGuard&) = delete;
+
+ private:
+  bool enabled_;
+  struct sigaction previous_int_ {
+  }, previous_term_{};
+};
 
 // ---- checkpoint file (docs/output.md, "Checkpoints"): a text header, the format version,
 // the fields in the binary format of io/byte_stream.hpp, then the FNV-1a 64 checksum of
@@ -70,8 +109,6 @@ const std::string& checked_name(const std::string& name) {
   return name;
 }
 
-constexpr const char* lock_file_name = ".stagger.lock";
-
 class Driver {
  public:
   Driver(Simulation& simulation, const RunControl& control)
@@ -82,10 +119,8 @@ class Driver {
         // A distributed run: rank 0 writes every file; the others keep the series in memory.
         pvd_(root_ ? (directory_ / (checked_name(control.name) + ".pvd")).string()
                    : checked_name(control.name).substr(0, 0)),
-        history_(root_ ? (directory_ / "history.csv").string() : std::string()) {}
-  ~Driver() {
-    if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the flock
-  }
+        history_(root_ ? (directory_ / "history.csv").string() : std::string()),
+        outputs_(directory_) {}
   Driver(const Driver&) = delete;
   Driver& operator=(const Driver&) = delete;
 
@@ -101,114 +136,13 @@ class Driver {
     }
   }
 
-  /// One run per output directory: an exclusive flock on `.stagger.lock`, held until the
-  /// driver ends (the kernel releases it if the process dies, so a killed run leaves no
-  /// stale lock). The file holds the owner's pid for the message of a second run.
-  void lock_directory() {
-    const fs::path path = directory_ / lock_file_name;
-    lock_fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (lock_fd_ < 0) {
-      throw Error("cannot lock output directory '" + directory_.string() + "': " + std::strerror(errno) +
-                  "; choose a writable output directory (--out)");
-    }
-    if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
-      const int code = errno;
-      std::string owner;
-      char buffer[32] = {};
-      if (::pread(lock_fd_, buffer, sizeof buffer - 1, 0) > 0) owner = buffer;
-      while (!owner.empty() && (owner.back() == '\n' || owner.back() == ' ')) owner.pop_back();
-      ::close(lock_fd_);
-      lock_fd_ = -1;
-      if (code == EWOULDBLOCK) {
-        throw Error("output directory '" + directory_.string() + "' is in use by another stagger run" +
-                    (owner.empty() ? std::string() : " (pid " + owner + ")") +
-                    "; wait for it to finish or choose another output directory (--out)");
-      }
-      throw Error("cannot lock output directory '" + directory_.string() + "': " + std::strerror(code));
-    }
-    const std::string pid = std::to_string(::getpid()) + "\n";
-    if (::ftruncate(lock_fd_, 0) != 0 ||
-        ::pwrite(lock_fd_, pid.data(), pid.size(), 0) != static_cast<ssize_t>(pid.size())) {
-      throw Error("cannot write the lock file '" + path.string() + "': " + std::strerror(errno) +
-                  "; free space or choose another output directory");
-    }
-  }
-
-  /// A fresh run replaces the previous run's series of the same name: its .pvd and the
-  /// numbered .vtu files (`<name>_` + digits + `.vtu`), so no stale dump lies beside the
-  /// new .pvd. Other names' files and everything else are left alone.
-  void remove_previous_dumps() const {
-    const std::string prefix = control_.name + "_";
-    std::error_code ec;
-    std::vector<fs::path> doomed;
-    for (const auto& entry : fs::directory_iterator(directory_, ec)) {
-      const std::string file = entry.path().filename().string();
-      bool ours = file == control_.name + ".pvd";
-      // <name>_NNNNNN.vtu, and a distributed run's <name>_NNNNNN.pvtu and <name>_NNNNNN_rRRRR.vtu
-      const std::size_t suffix = file.ends_with(".pvtu") ? 5 : file.ends_with(".vtu") ? 4 : 0;
-      if (!ours && suffix > 0 && file.starts_with(prefix)) {
-        std::string digits = file.substr(prefix.size(), file.size() - prefix.size() - suffix);
-        const std::size_t piece = digits.find("_r");
-        if (suffix == 4 && piece != std::string::npos && piece + 2 < digits.size() &&
-            digits.find_first_not_of("0123456789", piece + 2) == std::string::npos)
-          digits.resize(piece);
-        ours = digits.size() >= 6 && digits.find_first_not_of("0123456789") == std::string::npos;
-      }
-      if (ours && entry.is_regular_file(ec)) doomed.push_back(entry.path());
-    }
-    for (const auto& path : doomed) {
-      fs::remove(path, ec);
-      if (ec) {
-        throw Error("cannot remove the previous run's dump '" + path.string() + "': " + ec.message() +
-                    "; remove it by hand or choose another output directory (--out)");
-      }
-    }
-  }
-
-  void prepare_directory() const {
-    std::error_code ec;
-    fs::create_directories(directory_, ec);
-    if (ec || !fs::is_directory(directory_)) {
-      throw Error("cannot create output directory '" + directory_.string() +
-                  "': " + (ec ? ec.message() : std::string("a file of that name exists")) +
-                  "; choose a writable output directory (--out)");
-    }
-    // Permissions alone do not tell (read-only mounts, ACLs): write and remove a probe.
-    const fs::path probe = directory_ / (".stagger-write-probe." + std::to_string(::getpid()));
-    {
-      std::ofstream out(probe, std::ios::binary | std::ios::trunc);
-      out << "probe\n";
-      out.close();
-      if (!out) {
-        std::error_code ignored;
-        fs::remove(probe, ignored);
-        throw Error("output directory '" + directory_.string() +
-                    "' is not writable (a test file could not be "
-                    "created in it); choose a writable output directory (--out)");
-      }
-    }
-    fs::remove(probe, ec);
-    remove_stale_temporaries();
-  }
-
-  /// A process killed while writing leaves `.<name>.tmp.<pid>` behind: remove those whose
-  /// process is gone (never another live writer's).
-  void remove_stale_temporaries() const {
-    std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(directory_, ec)) {
-      const std::string name = entry.path().filename().string();
-      const bool ours = name.starts_with('.') &&
-                        (name.find(".tmp.") != std::string::npos || name.starts_with(".stagger-write-probe."));
-      if (!ours) continue;
-      const std::string pid_text = name.substr(name.rfind('.') + 1);
-      if (pid_text.empty() || pid_text.find_first_not_of("0123456789") != std::string::npos) continue;
-      const long pid = std::stol(pid_text);
-      if (pid == ::getpid()) continue;
-      if (::kill(static_cast<pid_t>(pid), 0) == -1 && errno == ESRCH) {
-        std::error_code ignored;
-        fs::remove(entry.path(), ignored);
-      }
-    }
+  /// Rank 0 of the run takes the directory: made and probed, locked for the run, and refused
+  /// if it holds another scene's results (docs/output.md, "The output directory").
+  void take_directory(bool fresh) {
+    outputs_.prepare();
+    outputs_.lock();
+    outputs_.claim(control_.name, scene_name(), control_.replace);
+    if (fresh) outputs_.remove_outputs_of(control_.name);
   }
 
   void start_fresh() {
@@ -295,6 +229,9 @@ class Driver {
     std::string history_rows = in.bytes();
     const std::string_view blob = in.bytes_view();
     in.expect_end();
+    // The checksum guards against damage, not against a crafted file: every field that ends
+    // up in the new run's files or schedule is checked against what a run can have written.
+    check_driver_fields(source, state, entries, history_rows);
     simulation_.restore(blob, source);
     const double t_end = simulation_.problem().t_end;
     if (!(t_end > simulation_.time())) {
@@ -310,6 +247,45 @@ class Driver {
     history_.restore(std::move(history_rows));
   }
 
+  /// After a restart (rank 0): the .pvd names only the dumps that are in this directory (a
+  /// restart into another directory starts its series at the restart).
+  void keep_present_dumps() {
+    std::vector<std::pair<double, std::string>> present;
+    for (const auto& entry : pvd_.entries())
+      if (outputs_.holds(entry.second)) present.push_back(entry);
+    pvd_.restore(std::move(present));
+  }
+
+  void check_driver_fields(const std::string& source, const DriverState& state,
+                           const std::vector<std::pair<double, std::string>>& entries,
+                           const std::string& history_rows) const {
+    auto refuse = [&](const std::string& what) {
+      throw Error(source + " holds an impossible " + what +
+                  "; it was not written by stagger (or was edited): " + "use another checkpoint or restart from t = 0");
+    };
+    if (!std::isfinite(state.next_dump_time)) refuse("next dump time");
+    if (state.dump_slot < 0) refuse("dump slot");
+    if (state.dump_count < 0 || state.dump_count != static_cast<std::int64_t>(entries.size()))
+      refuse("dump count (" + std::to_string(state.dump_count) + " for " + std::to_string(entries.size()) +
+             " .pvd entries)");
+    if (std::isnan(state.last_dump_time) || state.last_dump_time == std::numeric_limits<double>::infinity())
+      refuse("last dump time");
+    if (state.last_history_cycle < -1) refuse("history cycle");
+    if (!(state.loop_seconds >= 0) || !(state.wall_seconds >= 0) || !std::isfinite(state.loop_seconds) ||
+        !std::isfinite(state.wall_seconds))
+      refuse("run time");
+    for (const auto& [time, file] : entries) {
+      if (!std::isfinite(time)) refuse(".pvd entry time");
+      if (!driver_detail::is_output_of(control_.name, file)) refuse(".pvd entry '" + file + "'");
+    }
+    // history.csv: its header, then rows of numbers.
+    const std::string header = HistoryWriter("").text();
+    if (!history_rows.starts_with(header) ||
+        history_rows.find_first_not_of("0123456789+-.,eEinfa\n", header.size()) != std::string::npos ||
+        (history_rows.size() > header.size() && !history_rows.ends_with('\n')))
+      refuse("history table");
+  }
+
   RunResult loop() {
     const double t_end = simulation_.problem().t_end;
     const double loop_start_time = simulation_.time();
@@ -321,6 +297,8 @@ class Driver {
     const double progress_every = terminal ? 0.2 : 10.0;
     auto last_progress = terminal ? loop_start - std::chrono::seconds(1) : loop_start;
     std::string failure;
+    const SignalGuard signals(control_.handle_signals);
+    int stopped_by = 0;
 
     while (!simulation_.finished()) {
       const double t_stop = control_.dumps ? std::min(state_.next_dump_time, t_end) : t_end;
@@ -352,6 +330,15 @@ class Driver {
         print_progress(loop_start, loop_start_time, t_end, terminal);
         last_progress = Clock::now();
       }
+      if (control_.handle_signals) {
+        int number = pending_signal;
+        // Every rank stops at the same cycle (mpirun forwards the signal, not always at once).
+        if (simulation_.ranks() > 1 && simulation_.any_rank(number != 0) && number == 0) number = SIGTERM;
+        if (number != 0) {
+          stopped_by = number;
+          break;
+        }
+      }
     }
     state_.loop_seconds = loop_seconds_before + seconds_since(loop_start);
     if (control_.progress && root_ && terminal) {
@@ -359,13 +346,23 @@ class Driver {
       std::fputc('\n', stderr);
     }
 
+    if (stopped_by != 0) {
+      // Interrupted: the state is a good one, so a checkpoint lets the run go on from here.
+      char where[96];
+      std::snprintf(where, sizeof where, "cycle %ld, t = %.9g", simulation_.cycle(), simulation_.time());
+      failure = std::string("interrupted by ") + (stopped_by == SIGINT ? "SIGINT" : "SIGTERM") + " at " + where;
+      if (control_.checkpoints) {
+        write_checkpoint();
+        failure += "; continue with --restart " + (directory_ / (control_.name + ".checkpoint")).string();
+      }
+    }
     // Final outputs: the last state is always recorded and dumped (also after a failure,
     // so that the user sees where it went wrong).
     if (state_.last_history_cycle != simulation_.cycle()) record_history();
     if (control_.dumps && state_.last_dump_time != simulation_.time()) dump();
     // A failed step commits nothing (docs/algorithm.md §9), so the state just dumped is the
     // last good one: say so in the .pvd, the summary and the message.
-    if (!failure.empty() && control_.dumps && !pvd_.entries().empty()) {
+    if (!failure.empty() && stopped_by == 0 && control_.dumps && !pvd_.entries().empty()) {
       char where[96];
       std::snprintf(where, sizeof where, "cycle %ld, t = %.9g", simulation_.cycle(), simulation_.time());
       pvd_.mark_last_good_state(failure);
@@ -376,17 +373,18 @@ class Driver {
     RunResult result;
     result.completed = failure.empty();
     result.message = failure;
+    result.signal = stopped_by;
     RunSummary& summary = result.summary;
     if (control_.dumps && !pvd_.entries().empty()) {
       summary.last_dump = pvd_.entries().back().second;
       summary.last_dump_time = pvd_.entries().back().first;
       summary.last_good_state = !result.completed;
     }
-    summary.scene = simulation_.problem().name.empty() ? control_.name : simulation_.problem().name;
+    summary.scene = scene_name();
     summary.loop_seconds = state_.loop_seconds;
     summary.threads = omp_get_max_threads();
     summary.ranks = simulation_.ranks();
-    summary.status = failure.empty() ? "completed" : failure;
+    summary.status = failure.empty() ? "completed" : stopped_by != 0 ? "interrupted" : failure;
     const Simulation* whole = simulation_.gather();  // the whole state (rank 0; null elsewhere)
     if (control_.reference && whole) {
       try {
@@ -543,6 +541,11 @@ class Driver {
     std::fflush(stderr);
   }
 
+  /// The scene's name as summary.json gives it.
+  std::string scene_name() const {
+    return simulation_.problem().name.empty() ? control_.name : simulation_.problem().name;
+  }
+
   static std::string format_number(double value) {
     char text[32];
     std::snprintf(text, sizeof text, "%.6g", value);
@@ -551,11 +554,11 @@ class Driver {
 
   Simulation& simulation_;
   const RunControl& control_;
-  int lock_fd_ = -1;
   fs::path directory_;
   bool root_ = true;  // rank 0 of a distributed run (or a serial run): writes the files
   PvdWriter pvd_;
   HistoryWriter history_;
+  driver_detail::OutputDirectory outputs_;  // declared after directory_: built from it
   DriverState state_;
   int next_parity_ = 0;  // the set of a distributed run's next checkpoint files
   Clock::time_point start_ = Clock::now();
@@ -578,9 +581,7 @@ RunResult run(Simulation& simulation, const RunControl& control) {
   std::string error;
   try {
     if (simulation.rank() == 0) {  // a distributed run's shared files are rank 0's
-      driver.prepare_directory();
-      driver.lock_directory();
-      driver.remove_previous_dumps();
+      driver.take_directory(true);
     }
   } catch (const Error& e) {
     error = e.what();
@@ -599,8 +600,8 @@ RunResult resume(Simulation& simulation, const RunControl& control, const std::s
   try {
     driver.load_checkpoint(checkpoint);
     if (simulation.rank() == 0) {
-      driver.prepare_directory();
-      driver.lock_directory();
+      driver.take_directory(false);
+      driver.keep_present_dumps();
     }
   } catch (const Error& e) {
     error = e.what();

@@ -1,4 +1,4 @@
-// Every output file is written to a temporary name in its own directory and renamed, so a
+// Every output file is written to a temporary in a private directory beside it and renamed, so a
 // crash or kill -9 at any moment leaves either the old complete file or the new one. Every
 // system call's result is checked: a full disk (ENOSPC, often reported only by fdatasync or
 // close) is an error naming the file, never a "completed" run with truncated output.
@@ -56,11 +56,26 @@ int write_all(int fd, const char* data, std::size_t size) {
 }
 }  // namespace
 
-fs::path temporary_path(const fs::path& path) {
-  // Built by appending: GCC 12 at -O3 warns falsely (-Wrestrict) on "." + std::string.
-  std::string name(1, '.');
-  name.append(path.filename().string()).append(".tmp.").append(std::to_string(::getpid()));
-  return directory_of(path) / name;
+PrivateTemporary::PrivateTemporary(const fs::path& target) : target_(target) {
+  std::string pattern = (directory_of(target) / private_directory_prefix).string();
+  pattern.append(std::to_string(::getpid())).append(".XXXXXX");
+  if (::mkdtemp(pattern.data()) == nullptr) {
+    throw Error("cannot write '" + target.string() + "': creating a temporary directory beside it failed (" +
+                system_error(errno) + "); check that the output directory is writable");
+  }
+  directory_ = pattern;
+  file_ = directory_ / target.filename();
+}
+
+PrivateTemporary::~PrivateTemporary() {
+  // Only what this object made: the temporary (if a writer left it) and the directory.
+  std::error_code ignored;
+  fs::remove(file_, ignored);
+  fs::remove(directory_, ignored);
+}
+
+void PrivateTemporary::commit() {
+  replace_file(file_, target_);
 }
 
 void require_directory_of(const fs::path& path) {
@@ -124,48 +139,43 @@ std::string read_file(const std::string& path) {
 
 namespace {
 void write_through_temporary(const std::string& path, const std::function<void(const std::string&)>& write,
-                             std::string_view expected_tail, bool keep_extension);
+                             std::string_view expected_tail);
 }  // namespace
 
 void write_file_atomically(const std::string& path, const std::string& text) {
-  write_through_temporary(
-      path,
-      [&](const std::string& temporary) {
-        const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-        if (fd < 0) {
-          throw Error("cannot write '" + path + "': " + std::strerror(errno) +
-                      "; check that the output directory is writable");
-        }
-        if (const int code = io_detail::write_all(fd, text.data(), text.size()); code != 0) {
-          ::close(fd);
-          io_detail::fail_and_remove(temporary, path, "writing", code);
-        }
-        if (::close(fd) != 0) io_detail::fail_and_remove(temporary, path, "closing", errno);
-      },
-      {}, false);
+  write_through_temporary(path,
+                          [&](const std::string& temporary) {
+                            const int fd =
+                                ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+                            if (fd < 0) {
+                              throw Error("cannot write '" + path + "': " + std::strerror(errno) +
+                                          "; check that the output directory is writable");
+                            }
+                            if (const int code = io_detail::write_all(fd, text.data(), text.size()); code != 0) {
+                              ::close(fd);
+                              io_detail::fail_and_remove(temporary, path, "writing", code);
+                            }
+                            if (::close(fd) != 0) io_detail::fail_and_remove(temporary, path, "closing", errno);
+                          },
+                          {});
 }
 
 void write_file_atomically(const std::string& path, const std::function<void(const std::string&)>& write,
                            std::string_view expected_tail) {
-  // The temporary keeps the extension: some writers (gmsh) choose the format by it.
-  write_through_temporary(path, write, expected_tail, true);
+  // The temporary keeps the target's name (in a private directory): some writers (gmsh)
+  // choose the format by the extension.
+  write_through_temporary(path, write, expected_tail);
 }
 
 namespace {
 void write_through_temporary(const std::string& path, const std::function<void(const std::string&)>& write,
-                             std::string_view expected_tail, bool keep_extension) {
+                             std::string_view expected_tail) {
   namespace fs = std::filesystem;
   const fs::path target(path);
   io_detail::require_directory_of(target);
-  fs::path temporary = io_detail::temporary_path(target);
-  if (keep_extension) temporary += target.extension();
-  try {
-    write(temporary.string());
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw;
-  }
+  io_detail::PrivateTemporary scratch(target);
+  const fs::path& temporary = scratch.path();
+  write(temporary.string());
   if (!expected_tail.empty()) {
     // A writer that does not check its own writes (e.g. a library's fprintf) leaves a
     // truncated file on a full disk: its last bytes show whether it is complete.
@@ -179,13 +189,11 @@ void write_through_temporary(const std::string& path, const std::function<void(c
           static_cast<bool>(in.read(tail.data(), static_cast<std::streamsize>(tail.size()))) && tail == expected_tail;
     }
     if (!complete) {
-      std::error_code ignored;
-      fs::remove(temporary, ignored);
       throw Error("cannot write '" + path + "': the file came out incomplete (" + std::to_string(size < 0 ? 0 : size) +
                   " bytes; is the disk full?); free space or choose another output directory");
     }
   }
-  io_detail::replace_file(temporary, target);
+  scratch.commit();
 }
 }  // namespace
 

@@ -98,7 +98,8 @@ void add_region_field(vtkUnstructuredGrid* grid, const Mesh& mesh) {
 void write_grid(vtkUnstructuredGrid* grid, const std::string& path) {
   const std::filesystem::path target(path);
   io_detail::require_directory_of(target);
-  const std::filesystem::path temporary = io_detail::temporary_path(target);
+  io_detail::PrivateTemporary scratch(target);
+  const std::filesystem::path& temporary = scratch.path();
   vtkNew<vtkXMLUnstructuredGridWriter> writer;
   writer->SetFileName(temporary.string().c_str());
   writer->SetInputData(grid);
@@ -107,13 +108,11 @@ void write_grid(vtkUnstructuredGrid* grid, const std::string& path) {
   writer->SetCompressorTypeToZLib();
   writer->SetHeaderTypeToUInt64();  // large meshes
   if (writer->Write() != 1 || writer->GetErrorCode() != 0) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
     throw Error("cannot write '" + path +
                 "': the VTK writer failed; check that the output directory is writable "
                 "and the disk is not full");
   }
-  io_detail::replace_file(temporary, target);
+  scratch.commit();
 }
 
 void add_von_mises(vtkUnstructuredGrid* grid, std::span<const double> sxx, std::span<const double> syy,

@@ -211,6 +211,12 @@ TEST(RunDriver, RestartFromACheckpointReachesBitwiseTheSameFinalState) {
   EXPECT_TRUE(std::equal(entries.begin(), entries.end(), full_entries.end() - static_cast<long>(entries.size())));
   for (const auto& [time, file] : entries)
     EXPECT_TRUE(std::filesystem::exists(resumed_control.output_directory + "/" + file)) << file;
+  // The restarted run's own checkpoint restarts again (a later end time, a third directory).
+  RunControl again_control = quiet_control(scratch, "again");
+  again_control.dump_interval = control.dump_interval;
+  Simulation again(io_test::sod_problem(40, 0.15));
+  const RunResult again_result = resume(again, again_control, resumed_control.output_directory + "/sod.checkpoint");
+  EXPECT_TRUE(again_result.completed) << again_result.message;
   EXPECT_EQ(entries.back().first, 0.12);
   EXPECT_TRUE(std::filesystem::exists(resumed_control.output_directory + "/" + entries.back().second));
 }

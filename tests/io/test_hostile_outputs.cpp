@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include "io_test_support.hpp"
 #include "stagger/error.hpp"
@@ -43,16 +44,22 @@ std::string run_into(const fs::path& directory, const std::string& name, bool re
   }
 }
 
+// A file an attacker would like a run to overwrite ("precious\n") and an empty output directory.
+std::pair<fs::path, fs::path> victim_and_directory(const io_test::ScratchDirectory& scratch) {
+  const fs::path victim = scratch.path() / "victim.txt";
+  std::ofstream(victim) << "precious\n";
+  const fs::path out = scratch.path() / "out";
+  fs::create_directories(out);
+  return {victim, out};
+}
+
 bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
 
 TEST(HostileOutputs, ALinkPlantedAtTheLockFileIsRefusedAndItsTargetUntouched) {
   io_test::ScratchDirectory scratch("hostile_lock");
-  const fs::path victim = scratch.path() / "victim.txt";
-  std::ofstream(victim) << "precious\n";
-  const fs::path out = scratch.path() / "out";
-  fs::create_directories(out);
+  const auto [victim, out] = victim_and_directory(scratch);
   fs::create_symlink(victim, out / ".stagger.lock");
   const std::string message = run_into(out, "sod");
   EXPECT_TRUE(contains(message, "'.stagger.lock' is a symbolic link")) << message;
@@ -62,10 +69,7 @@ TEST(HostileOutputs, ALinkPlantedAtTheLockFileIsRefusedAndItsTargetUntouched) {
 
 TEST(HostileOutputs, LinksAtEveryPredictableTemporaryNameAreNeitherFollowedNorRemoved) {
   io_test::ScratchDirectory scratch("hostile_temporaries");
-  const fs::path victim = scratch.path() / "victim.txt";
-  std::ofstream(victim) << "precious\n";
-  const fs::path out = scratch.path() / "out";
-  fs::create_directories(out);
+  const auto [victim, out] = victim_and_directory(scratch);
   // The names a writer of this process used to choose (`.<file>.tmp.<pid>`), for every file
   // of the run, and the write probe's.
   const std::string pid = std::to_string(::getpid());

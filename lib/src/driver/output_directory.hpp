@@ -2,7 +2,7 @@
 /// @file output_directory.hpp
 /// A run's output directory (internal to lib/src/driver): created and probed, locked for one
 /// run, cleared of the files this program made and no other, and refused when it holds another
-/// scene's results (docs/output.md, "The output directory").
+/// scene's results (docs/output.md, "One run per directory" and after).
 #include <filesystem>
 #include <string>
 #include <vector>

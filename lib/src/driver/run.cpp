@@ -75,8 +75,8 @@ class SignalGuard {
 
  private:
   bool enabled_;
-  struct sigaction previous_int_ {
-  }, previous_term_{};
+  struct sigaction previous_int_ = {};
+  struct sigaction previous_term_ = {};
 };
 
 // ---- checkpoint file (docs/output.md, "Checkpoints"): a text header, the format version,
@@ -137,7 +137,7 @@ class Driver {
   }
 
   /// Rank 0 of the run takes the directory: made and probed, locked for the run, and refused
-  /// if it holds another scene's results (docs/output.md, "The output directory").
+  /// if it holds another scene's results (docs/output.md, "One run per directory" and after).
   void take_directory(bool fresh) {
     outputs_.prepare();
     outputs_.lock();
@@ -261,11 +261,12 @@ class Driver {
                            const std::string& history_rows) const {
     auto refuse = [&](const std::string& what) {
       throw Error(source + " holds an impossible " + what +
-                  "; it was not written by stagger (or was edited): " + "use another checkpoint or restart from t = 0");
+                  "; it was not written by stagger (or was edited): use another checkpoint or restart from t = 0");
     };
     if (!std::isfinite(state.next_dump_time)) refuse("next dump time");
     if (state.dump_slot < 0) refuse("dump slot");
-    if (state.dump_count < 0 || state.dump_count != static_cast<std::int64_t>(entries.size()))
+    // A run restarted into another directory lists fewer dumps than it has numbered.
+    if (state.dump_count < static_cast<std::int64_t>(entries.size()))
       refuse("dump count (" + std::to_string(state.dump_count) + " for " + std::to_string(entries.size()) +
              " .pvd entries)");
     if (std::isnan(state.last_dump_time) || state.last_dump_time == std::numeric_limits<double>::infinity())
@@ -332,8 +333,12 @@ class Driver {
       }
       if (control_.handle_signals) {
         int number = pending_signal;
-        // Every rank stops at the same cycle (mpirun forwards the signal, not always at once).
-        if (simulation_.ranks() > 1 && simulation_.any_rank(number != 0) && number == 0) number = SIGTERM;
+        // Every rank stops at the same cycle (mpirun forwards the signal, not always at once):
+        // the ranks compare notes every 16th cycle, so the vote costs no collective on the others.
+        if (simulation_.ranks() > 1) {
+          const bool any = cycle % 16 == 0 && simulation_.any_rank(number != 0);
+          number = !any ? 0 : number != 0 ? number : SIGTERM;
+        }
         if (number != 0) {
           stopped_by = number;
           break;

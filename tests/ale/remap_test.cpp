@@ -633,4 +633,121 @@ TEST(RemapRz, LinearFieldsAreReproducedExactly) {
   }
 }
 
+
+// The momentum remap (docs/ale.md, "Momentum"): the point velocities of a smooth field after
+// the mesh slid there and back in remaps of about a quarter zone each, against the initial
+// ones; the point-mass-weighted L1 error over the (massive) points. Uniform density, so that
+// only the velocity reconstruction (its gradients and limiter) decides the error.
+double cyclic_velocity_error(int n, bool limiter, bool rz) {
+  Mesh m = stagger::build_mesh(stagger::meshgen::rectangle(0, 1, 0, 1, n, n));
+  const std::vector<int> material(m.num_zones(), 0);
+  stagger::Remapper remapper(m, material, rz);
+  // vx vanishes on the axis x = 0 (rz), as an axis point's radial velocity must.
+  const auto velocity = [](double x, double y) {
+    return std::array<double, 2>{0.5 * std::sin(2 * M_PI * x) * std::sin(2 * M_PI * y),
+                                 1 + 0.5 * std::cos(2 * M_PI * x) * std::sin(2 * M_PI * y)};
+  };
+  State st = rz ? make_rz_state(
+                      m, 1.0, 0, 0, [](const Mesh&, auto&, auto&, Index) { return 1.0; }, velocity)
+                : make_state(
+                      m, [](double, double) { return 1.0; }, [](double, double) { return 1.0; }, velocity);
+  const std::vector<double> vx0 = st.vx, vy0 = st.vy;
+  const int steps = 10 * n / 8;
+  std::vector<double> xo = m.x, yo = m.y, xn(m.x.size()), yn(m.y.size());
+  for (int j = 1; j <= 2 * steps; ++j) {
+    const double t = static_cast<double>(j) / (2 * steps);
+    for (Index p = 0; p < m.num_points(); ++p) {
+      const double x = m.x[p], y = m.y[p];
+      const double w = std::pow(std::sin(M_PI * x) * std::sin(M_PI * y), 2);
+      xn[p] = x + 0.2 * w * std::sin(M_PI * t);
+      yn[p] = y + 0.1 * w * std::sin(M_PI * t);
+    }
+    if (j == 2 * steps) xn = m.x, yn = m.y;
+    auto f = st.fields();
+    remapper.remap(xo.data(), yo.data(), xn.data(), yn.data(), f, limiter);
+    xo = xn, yo = yn;
+  }
+  double error = 0, mass = 0;
+  for (Index p = 0; p < m.num_points(); ++p) {
+    error += st.point_mass[p] * (std::abs(st.vx[p] - vx0[p]) + std::abs(st.vy[p] - vy0[p]));
+    mass += st.point_mass[p];
+  }
+  return error / mass;
+}
+
+void expect_second_order_velocity_remap(bool rz) {
+  for (bool limiter : {false, true}) {
+    const double e1 = cyclic_velocity_error(16, limiter, rz), e2 = cyclic_velocity_error(32, limiter, rz),
+                 e3 = cyclic_velocity_error(64, limiter, rz);
+    const double order1 = std::log2(e1 / e2), order2 = std::log2(e2 / e3);
+    std::printf("cyclic velocity remap, rz %d limiter %d: L1 errors %.3e %.3e %.3e, orders %.2f %.2f\n", rz, limiter,
+                e1, e2, e3, order1, order2);
+    EXPECT_GE(order2, 1.8) << "rz " << rz << " limiter " << limiter << ": errors " << e1 << " " << e2 << " " << e3;
+  }
+}
+
+TEST(Remap, SmoothVelocitySlidThereAndBackConvergesAtSecondOrder) {
+  expect_second_order_velocity_remap(false);
+}
+
+TEST(RemapRz, SmoothVelocitySlidThereAndBackConvergesAtSecondOrder) {
+  expect_second_order_velocity_remap(true);
+}
+
+// A velocity with jumps and a peak, remapped 15 times: the largest excursion of either
+// component beyond its initial range, relative to that range.
+double velocity_overshoot(bool rz, bool limiter) {
+  const Mesh m = square_mesh(20);
+  const std::vector<int> material(m.num_zones(), 0);
+  stagger::Remapper remapper(m, material, rz);
+  const auto velocity = [](double x, double y) {
+    const double bump = std::hypot(x - 0.3, y - 0.6) < 0.15 ? 3.0 : 0.0;
+    return std::array<double, 2>{x * ((y > 0.45 ? 2.0 : -1.0) + bump), (x > 0.55 ? 1.0 : -2.0) + 0.3 * std::sin(9 * y)};
+  };
+  State st = rz ? make_rz_state(
+                      m, 1.0, 0.5, 0.0, [](const Mesh&, auto&, auto&, Index) { return 1.0; }, velocity)
+                : make_state(
+                      m, [](double x, double) { return 1.0 + 0.5 * x; }, [](double, double) { return 1.0; }, velocity);
+  const auto [ulo, uhi] = std::minmax_element(st.vx.begin(), st.vx.end());
+  const auto [wlo, whi] = std::minmax_element(st.vy.begin(), st.vy.end());
+  const double u_lo = *ulo, u_hi = *uhi, w_lo = *wlo, w_hi = *whi;
+  double worst = 0;
+  std::vector<double> xo = m.x, yo = m.y, xn, yn;
+  for (int step = 0; step < 15; ++step) {
+    if (rz)
+      moved_rz(m, 0.015, 0.7 * step, xn, yn);
+    else
+      moved(m, 0.015, 0.7 * step, xn, yn);
+    auto f = st.fields();
+    remapper.remap(xo.data(), yo.data(), xn.data(), yn.data(), f, limiter);
+    xo = xn, yo = yn;
+    for (Index p = 0; p < m.num_points(); ++p) {
+      worst = std::max({worst, (u_lo - st.vx[p]) / (u_hi - u_lo), (st.vx[p] - u_hi) / (u_hi - u_lo),
+                        (w_lo - st.vy[p]) / (w_hi - w_lo), (st.vy[p] - w_hi) / (w_hi - w_lo)});
+    }
+  }
+  return worst;
+}
+
+// The limiter (Barth-Jespersen on the point gradients, at the midpoints of the point's edges)
+// bounds the reconstruction; the new velocity, the donor's momentum after its outflows over its
+// new mass, can still step a little past its neighbourhood where a point at an extreme gives
+// mass away at its reconstructed (not its own) velocity: the scalar fields have a donor
+// remainder bound for that (docs/ale.md), the velocities not yet. Measured: 2.0e-4 of the
+// range with the limiter, 4.8e-2 and 5.0e-2 without (planar, rz); the bound asserted is 1e-3.
+void expect_no_new_velocity_extrema(bool rz) {
+  const double limited = velocity_overshoot(rz, true), unlimited = velocity_overshoot(rz, false);
+  std::printf("rz %d: largest velocity overshoot / range: limited %.3e, unlimited %.3e\n", rz, limited, unlimited);
+  EXPECT_LT(limited, 1e-3);
+  EXPECT_GT(unlimited, 1e-2) << "without the limiter the remap must overshoot for the test to mean anything";
+}
+
+TEST(Remap, TheLimiterBoundsNewVelocityExtrema) {
+  expect_no_new_velocity_extrema(false);
+}
+
+TEST(RemapRz, TheLimiterBoundsNewVelocityExtrema) {
+  expect_no_new_velocity_extrema(true);
+}
+
 }  // namespace

@@ -249,6 +249,37 @@ TEST(Rezone, PerturbedMeshGetsSmootherAndStaysValid) {
   }
 }
 
+// relaxation = w moves every point by w of the way from the Lagrangian mesh to the sweeps'
+// mesh (RezoneOptions::relaxation), on a graded mesh with walls (boundary points sliding) for
+// both smoothers: the w = 1 rezone with the same cap on the smoothed move (max_move = w, i.e.
+// one edge for the sweeps) gives the sweeps' mesh.
+TEST(Rezone, RelaxationMovesEachPointByItsFraction) {
+  Mesh mesh = rectangle_mesh(12, 10);
+  for (Index p = 0; p < mesh.num_points(); ++p) mesh.x[p] = mesh.x[p] * mesh.x[p];  // graded in x
+  const RezoneConstraints rc = make_rezone_constraints(mesh, {});
+  const Positions lag = perturb_interior(mesh, rc, 0.3, 1.0 / 144, 11);
+  for (const RezoneMethod m : {RezoneMethod::winslow, RezoneMethod::reference_jacobian})
+    for (const double w : {0.25, 0.75}) {
+      RezoneOptions full;
+      full.method = m;
+      full.relaxation = 1;
+      full.iterations = 3;
+      full.max_move = 1;
+      RezoneOptions relaxed = full;
+      relaxed.relaxation = w;
+      relaxed.max_move = w;
+      const Rezoned a = run_rezone(mesh, rc, full, lag), b = run_rezone(mesh, rc, relaxed, lag);
+      ASSERT_EQ(b.result.backed_off_points, 0);
+      double moved = 0;
+      for (Index p = 0; p < mesh.num_points(); ++p) {
+        moved = std::max(moved, std::hypot(a.pos.x[p] - lag.x[p], a.pos.y[p] - lag.y[p]));
+        EXPECT_NEAR(b.pos.x[p] - lag.x[p], w * (a.pos.x[p] - lag.x[p]), 1e-15) << "point " << p << " w " << w;
+        EXPECT_NEAR(b.pos.y[p] - lag.y[p], w * (a.pos.y[p] - lag.y[p]), 1e-15) << "point " << p << " w " << w;
+      }
+      EXPECT_GT(moved, 1e-3) << "the sweeps must move the mesh for the test to mean anything";
+    }
+}
+
 TEST(Rezone, RelaxationZeroAndNoIterationsReturnTheLagrangianMeshBitwise) {
   const Mesh mesh = rectangle_mesh(8, 8);
   const RezoneConstraints rc = make_rezone_constraints(mesh, {});

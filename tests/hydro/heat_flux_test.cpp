@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "problems.hpp"
@@ -70,6 +71,39 @@ TEST(HeatFlux, ItsStabilityLimitIsReportedWhenItIsTheSmallest) {
   sim.advance_to(0.02);
   EXPECT_GT(heat_limited, sim.cycle() / 2);
   EXPECT_LT(std::abs(sim.energy().relative_error), 1e-12);
+}
+
+// The heat flux's stability limit (docs/algorithm.md §21) is what keeps an explicit conduction
+// bounded: a hot spot in gas at rest in pressure, conduction far faster than sound (c1 = 40), stays within
+// its initial range of e (a maximum principle) in planar and rz, and the limit bound most steps.
+TEST(HeatFlux, ItsTimeStepLimitKeepsConductionWithinTheInitialRange) {
+  for (bool rz : {false, true}) {
+    Mesh mesh = rectangle_mesh(1.0, 1.0, 12, 12);
+    Problem p = gas_problem(std::move(mesh), 5.0 / 3.0, 0.02);
+    RegionSetup r = uniform_region(1.0, 0.1);
+    // In pressure equilibrium: a light, hot spot (e 3.3 times the surroundings').
+    r.density = [](double x, double y) { return 1.0 - 0.7 * std::exp(-20 * ((x - 0.3) * (x - 0.3) + y * y)); };
+    p.regions.push_back(r);
+    walls(p);
+    if (rz) p.options.geometry = CoordinateSystem::rz;
+    p.options.heat_flux_c1 = 40.0;
+    Simulation sim(std::move(p));
+    const auto e0 = sim.specific_internal_energy();
+    const double lo = *std::min_element(e0.begin(), e0.end()), hi = *std::max_element(e0.begin(), e0.end());
+    double coldest = lo, hottest = hi;
+    int heat_limited = 0;
+    sim.set_observer([&](const Simulation& s) {
+      for (double e : s.specific_internal_energy()) coldest = std::min(coldest, e), hottest = std::max(hottest, e);
+      if (s.dt_limit().rfind("heat-flux limit of zone ", 0) == 0) ++heat_limited;
+    });
+    sim.advance_to(0.02);
+    std::printf("rz %d: e in [%.6f, %.6f] against the initial [%.6f, %.6f]; %d of %ld steps heat-limited\n", rz,
+                coldest, hottest, lo, hi, heat_limited, sim.cycle());
+    EXPECT_GT(heat_limited, sim.cycle() / 2) << (rz ? "rz" : "planar");
+    // The gas moves a little (conduction changes the pressure): a margin of 2% of the range.
+    EXPECT_GE(coldest, lo - 0.02 * (hi - lo)) << (rz ? "rz" : "planar");
+    EXPECT_LE(hottest, hi + 0.02 * (hi - lo)) << (rz ? "rz" : "planar");
+  }
 }
 
 }  // namespace stagger

@@ -42,6 +42,7 @@ class AleRemap final : public Remap {
   void fixup();
   double kinetic_losses();
   void pay_deficits_locally();
+  void pay_deficits_globally();
   void share_to_zones();
   void bound_zone_shares();
 
@@ -207,6 +208,7 @@ void AleRemap::fixup() {
   std::fill(dE_.begin(), dE_.end(), 0.0);
   const double moved = kinetic_losses();
   pay_deficits_locally();
+  pay_deficits_globally();
   share_to_zones();
   bound_zone_shares();
   const Index nz = s_.mesh().num_zones();
@@ -266,6 +268,25 @@ void AleRemap::pay_deficits_locally() {
     });
     dk_[p] += got;
   }
+}
+
+// What the neighbours could not pay is paid by every point whose dK is still positive, in
+// proportion to it: a move of kinetic-energy error between points, where the alternative is
+// to cool the zones around the point (a cold zone by half its internal energy, remap after
+// remap). When the remap as a whole lost kinetic energy (sum dK >= 0) every dK is then >= 0
+// and no zone is cooled; otherwise the positive dK are used up and the zones pay the rest
+// (bound_zone_shares). Sums in point order: the same on any thread count.
+void AleRemap::pay_deficits_globally() {
+  const Index np = s_.mesh().num_points();
+  double owed = 0, supply = 0;
+  for (Index p = 0; p < np; ++p) {
+    if (dk_[p] < 0) owed -= dk_[p];
+    if (dk_[p] > 0) supply += dk_[p];
+  }
+  if (!(owed > 0) || !(supply > 0)) return;
+  const double paid = std::min(owed, supply);
+  const double keep_supply = 1 - paid / supply, keep_owed = 1 - paid / owed;
+  for (Index p = 0; p < np; ++p) dk_[p] *= dk_[p] > 0 ? keep_supply : keep_owed;
 }
 
 // Each point's dK to the zones around it, in proportion to their corner masses (dE per zone).

@@ -40,11 +40,9 @@ double worst_yield_ratio(const Simulation& s, double y0, double h) {
 // (the observer runs after the remap) no zone lies outside its yield surface.
 void expect_remapped_solid_inside_its_yield_surface(const std::string& scene_file, const std::string& n, double t_end,
                                                     double y0, double h) {
-  Scene scene = load_scene(std::string(STAGGER_SOURCE_DIR) + "/apps/scenes/" + scene_file,
-                           {{"mesh.parameters.n", n},
-                            {"time.end", std::to_string(t_end)},
-                            {"ale.mode", "ale"},
-                            {"ale.remap_every", "1"}});
+  Scene scene = load_scene(
+      std::string(STAGGER_SOURCE_DIR) + "/apps/scenes/" + scene_file,
+      {{"mesh.parameters.n", n}, {"time.end", std::to_string(t_end)}, {"ale.mode", "ale"}, {"ale.remap_every", "1"}});
   Simulation sim(std::move(scene.problem));
   double worst = 0, plastic = 0;
   long at_the_surface = 0;
@@ -153,7 +151,9 @@ Problem cold_vortex(bool rz, double e0, Viscosity viscosity = Viscosity::bulk) {
   constexpr double pi = std::numbers::pi;
   if (rz) {
     r.velocity_x = [](double x, double y) { return -x * std::sin(pi * x) * std::cos(pi * y); };
-    r.velocity_y = [](double x, double y) { return (2 * std::sin(pi * x) / pi + x * std::cos(pi * x)) * std::sin(pi * y); };
+    r.velocity_y = [](double x, double y) {
+      return (2 * std::sin(pi * x) / pi + x * std::cos(pi * x)) * std::sin(pi * y);
+    };
     p.options.geometry = CoordinateSystem::rz;
   } else {
     r.velocity_x = [](double x, double y) { return std::sin(pi * x) * std::cos(pi * y); };
@@ -262,8 +262,9 @@ TEST(RzViscosityWork, TheBulkQCoolsNoZoneOfAColdVortexRing) {
     const auto e = sim.specific_internal_energy();
     coldest[i] = *std::min_element(e.begin(), e.end()) / e0;
   }
-  std::printf("one Lagrangian step of the cold vortex ring: coldest e / e0 %.4f (bulk q), %.4f (tensor q), %.4f (edge)\n",
-              coldest[0], coldest[1], coldest[2]);
+  std::printf(
+      "one Lagrangian step of the cold vortex ring: coldest e / e0 %.4f (bulk q), %.4f (tensor q), %.4f (edge)\n",
+      coldest[0], coldest[1], coldest[2]);
   EXPECT_GE(coldest[0], 1 - 1e-3);
 }
 
@@ -321,8 +322,8 @@ void expect_the_axis_to_accelerate_with_the_rest(int remap_every) {
     else
       rest = std::max(rest, d);
   }
-  std::printf("remap every %d: t %.6e, largest |v_z - t| / t: axis %.2e, off the axis %.2e\n", remap_every,
-              sim.time(), axis, rest);
+  std::printf("remap every %d: t %.6e, largest |v_z - t| / t: axis %.2e, off the axis %.2e\n", remap_every, sim.time(),
+              axis, rest);
   ASSERT_GT(axis_points, 0);
   EXPECT_LT(axis, 1e-3);
   EXPECT_LT(rest, 1e-3);

@@ -633,7 +633,6 @@ TEST(RemapRz, LinearFieldsAreReproducedExactly) {
   }
 }
 
-
 // The momentum remap (docs/ale.md, "Momentum"): the point velocities of a smooth field after
 // the mesh slid there and back in remaps of about a quarter zone each, against the initial
 // ones; the point-mass-weighted L1 error over the (massive) points. Uniform density, so that

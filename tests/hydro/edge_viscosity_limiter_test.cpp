@@ -56,8 +56,8 @@ void expect_a_linear_compression_to_feel_no_limited_viscosity(bool rz) {
   const auto limited = compressed_positions(rz, 0.5, 1.0, true);
   const auto unlimited = compressed_positions(rz, 0.5, 1.0, false);
   const double d_limited = largest_difference(limited, inviscid), d_unlimited = largest_difference(unlimited, inviscid);
-  std::printf("rz %d: largest position difference from the inviscid run: limited %.3e, unlimited %.3e\n", rz,
-              d_limited, d_unlimited);
+  std::printf("rz %d: largest position difference from the inviscid run: limited %.3e, unlimited %.3e\n", rz, d_limited,
+              d_unlimited);
   EXPECT_LT(d_limited, 1e-13);
   EXPECT_GT(d_unlimited, 1e-5) << "without the limiter the viscosity must act for the test to mean anything";
 }

@@ -685,6 +685,77 @@ void expect_second_order_velocity_remap(bool rz) {
   }
 }
 
+// The kinetic energy the remap carries into each dual cell (for the fix-up), by an exact
+// property: dK_p = K'_p - M'_p |v'_p|^2 / 2 is Galilean invariant. A flux carries
+// 1/2 |u|^2 m + rho_c u . int (v - u), the corner term of the velocity reconstruction; with a
+// uniform velocity U added everywhere it carries U . (its momentum) + 1/2 |U|^2 m more, which
+// is what the new momentum's kinetic energy gains too, so every dK_p is the same. Without the
+// corner term a flux misses rho_c U . int (v - u), and the fix-up would depend on the frame.
+// The largest |dK_p(U) - dK_p(0)| against the largest |dK_p(0)|, one unlimited remap of a
+// smooth field. (With the limiter the remapped velocities themselves move with the frame, by
+// up to 2.5e-3 for U = (3, -2) here: the limiter's branches are not invariant; see the note
+// in docs/ale.md, "Reconstruction and limiter".)
+struct FrameDependence {
+  double dk, velocity;  // largest change of dK_p (relative), of the velocity (absolute)
+};
+FrameDependence frame_dependence(bool rz, bool limiter) {
+  const Mesh m = square_mesh(24);
+  const std::vector<int> material(m.num_zones(), 0);
+  std::vector<double> dk[2], vx[2], vy[2];
+  for (int frame = 0; frame < 2; ++frame) {
+    stagger::Remapper remapper(m, material, rz);
+    // rz: no radial shift (the axis's radial velocity is 0); the axial one is a uniform motion.
+    const double ux = frame == 0 || rz ? 0.0 : 3.0, uy = frame == 0 ? 0.0 : -2.0;
+    const auto velocity = [&](double x, double y) {
+      return std::array<double, 2>{ux + x * std::sin(2 * M_PI * x) * std::sin(2 * M_PI * y),
+                                   uy + 0.5 * std::cos(2 * M_PI * x) * y};
+    };
+    State st =
+        rz ? make_rz_state(
+                 m, 1.0, 0.2, 0.0, [](const Mesh&, auto&, auto&, Index) { return 1.0; }, velocity)
+           : make_state(
+                 m, [](double x, double) { return 1.0 + 0.2 * x; }, [](double, double) { return 1.0; }, velocity);
+    std::vector<double> xn, yn;
+    if (rz)
+      moved_rz(m, 0.012, 0.4, xn, yn);
+    else
+      moved(m, 0.012, 0.4, xn, yn);
+    auto f = st.fields();
+    remapper.remap(m.x.data(), m.y.data(), xn.data(), yn.data(), f, limiter);
+    for (Index p = 0; p < m.num_points(); ++p)
+      dk[frame].push_back(st.kinetic[p] - 0.5 * st.point_mass[p] * (st.vx[p] * st.vx[p] + st.vy[p] * st.vy[p]));
+    vx[frame] = st.vx, vy[frame] = st.vy;
+    if (frame == 1)
+      for (std::size_t p = 0; p < vx[1].size(); ++p) vx[1][p] -= ux, vy[1][p] -= uy;
+  }
+  double scale = 0, change = 0, velocity = 0;
+  for (std::size_t p = 0; p < dk[0].size(); ++p) {
+    scale = std::max(scale, std::abs(dk[0][p]));
+    change = std::max(change, std::abs(dk[1][p] - dk[0][p]));
+    velocity = std::max({velocity, std::abs(vx[1][p] - vx[0][p]), std::abs(vy[1][p] - vy[0][p])});
+  }
+  std::printf(
+      "rz %d, limiter %d: largest dK_p %.3e, its largest change with the frame %.3e (ratio %.2e); velocity %.3e\n", rz,
+      limiter, scale, change, change / scale, velocity);
+  return {change / scale, velocity};
+}
+
+void expect_galilean_invariant_kinetic_energy_losses(bool rz) {
+  for (bool limiter : {false, true}) {
+    const FrameDependence d = frame_dependence(rz, limiter);
+    EXPECT_LT(d.dk, 1e-8) << "limiter " << limiter;
+    EXPECT_LT(d.velocity, 1e-14) << "limiter " << limiter;
+  }
+}
+
+TEST(Remap, TheFixUpsKineticEnergyLossesAreGalileanInvariant) {
+  expect_galilean_invariant_kinetic_energy_losses(false);
+}
+
+TEST(RemapRz, TheFixUpsKineticEnergyLossesAreGalileanInvariant) {
+  expect_galilean_invariant_kinetic_energy_losses(true);
+}
+
 TEST(Remap, SmoothVelocitySlidThereAndBackConvergesAtSecondOrder) {
   expect_second_order_velocity_remap(false);
 }
@@ -732,7 +803,7 @@ double velocity_overshoot(bool rz, bool limiter) {
 // bounds the reconstruction; the new velocity, the donor's momentum after its outflows over its
 // new mass, can still step a little past its neighbourhood where a point at an extreme gives
 // mass away at its reconstructed (not its own) velocity: the scalar fields have a donor
-// remainder bound for that (docs/ale.md), the velocities not yet. Measured: 2.0e-4 of the
+// remainder bound for that (docs/ale.md), the velocities not yet. Measured: 1.7e-4 of the
 // range with the limiter, 4.8e-2 and 5.0e-2 without (planar, rz); the bound asserted is 1e-3.
 void expect_no_new_velocity_extrema(bool rz) {
   const double limited = velocity_overshoot(rz, true), unlimited = velocity_overshoot(rz, false);

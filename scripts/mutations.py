@@ -191,9 +191,16 @@ def main():
         if args.write_docs:
             doc = ROOT / "docs" / "robustness.md"
             content = doc.read_text()
-            pattern = re.compile(re.escape(BEGIN) + ".*?" + re.escape(END), re.S)
-            if not pattern.search(content):
+            pattern = re.compile(re.escape(BEGIN) + "\n(.*?)" + re.escape(END), re.S)
+            found = pattern.search(content)
+            if not found:
                 sys.exit("mutations: the table's markers are missing from docs/robustness.md")
+            if args.only:
+                # Only the rows of the mutations run are replaced; the others stay, in the table's order.
+                fresh = {line.split(" | ")[0]: line for line in table[2:]}
+                old = [line for line in found.group(1).splitlines() if line.startswith("| ")]
+                rows_out = table[:2] + [fresh.pop(line.split(" | ")[0], line) for line in old[2:]] + list(fresh.values())
+                text = "\n".join(rows_out)
             doc.write_text(pattern.sub(lambda _: BEGIN + "\n" + text + "\n" + END, content))
         if any(len(f) < 2 for _, f in rows):
             print("mutations: some breakage fails fewer than two tests", file=sys.stderr)

@@ -414,4 +414,55 @@ TEST(Scenes, SodHasTheVerificationSetUp) {
   EXPECT_DOUBLE_EQ(scene.problem.regions[0].density(0.75, 0.05), 0.125);
 }
 
+// rz scenes: `stagger check` prints the masses per radian (the run's), and the whole 2 pi:
+// rho = 1 on [0, 1] x [0, 0.1] is 0.1 / 2 = 0.05 per radian (it printed the planar 0.1).
+TEST_F(SceneFile, CheckPrintsRzMassesPerRadian) {
+  const std::string rz = stagger::describe(stagger::load_scene(write(base_scene + "[numerics]\ngeometry = \"rz\"\n")));
+  EXPECT_CONTAINS(rz, "mass ~ 0.05 per radian (0.314159 in the full 2 pi)");
+  const std::string planar = stagger::describe(stagger::load_scene(write(base_scene)));
+  EXPECT_CONTAINS(planar, "mass ~ 0.1, pressure given");
+}
+
+// [ale] keys the mode never reads are warned, naming the key and why (docs/scenes.md "Warnings").
+TEST_F(SceneFile, AleKeysTheModeIgnoresGetAWarning) {
+  const auto warnings_of = [&](const std::string& ale) {
+    std::string all;
+    for (const std::string& w : stagger::load_scene(write(base_scene + "[ale]\n" + ale)).warnings) all += w + "\n";
+    return all;
+  };
+  EXPECT_CONTAINS(warnings_of("relaxation = 0.3\n"),
+                  "key 'ale.relaxation': is ignored: [ale] has no mode, so the run is Lagrangian");
+  EXPECT_CONTAINS(warnings_of("mode = \"lagrangian\"\nremap_every = 5\n"),
+                  "key 'ale.remap_every': is ignored: mode = \"lagrangian\" never rezones or remaps");
+  const std::string eulerian =
+      warnings_of("mode = \"eulerian\"\nquality_trigger = 0.3\nmax_move = 0.2\nlimiter = \"none\"\n");
+  EXPECT_CONTAINS(eulerian, "key 'ale.quality_trigger': is ignored: mode = \"eulerian\" remaps after every cycle");
+  EXPECT_CONTAINS(eulerian, "key 'ale.max_move': is ignored: mode = \"eulerian\" returns to the initial mesh");
+  EXPECT_EQ(eulerian.find("ale.limiter"), std::string::npos) << eulerian;  // read by every remap
+  EXPECT_CONTAINS(warnings_of("mode = \"ale\"\nsize_weight = 2\n"),
+                  "key 'ale.size_weight': is ignored: it weighs a term of rezone = \"reference_jacobian\" only");
+  EXPECT_EQ(warnings_of("mode = \"ale\"\nrelaxation = 0.3\nrezone = \"reference_jacobian\"\nsize_weight = 2\n"), "");
+}
+
+// Points shared by regions with different initial velocities take the first [[region]]'s: the
+// order of the blocks decides their momentum, which is warned (0.9 % of the kinetic energy in
+// the finding); the same velocity on both sides is not.
+TEST_F(SceneFile, SharedPointsOfRegionsWithDifferentVelocitiesGetAWarning) {
+  const auto scene = [&](const std::string& air_velocity) {
+    return toml::time("0.1") + "[mesh]\nfile = \"" + STAGGER_SOURCE_DIR +
+           "/geometries/water_air.geo\"\nquads_only = true\n[mesh.parameters]\nn_water = 7\nn_air = 3\nn_y = 1\n" +
+           toml::ideal_gas() +
+           "[[region]]\nname = \"water\"\nmaterial = \"gas\"\ndensity = 1.0\npressure = 1.0\nvelocity = [0.1, 0.0]\n"
+           "[[region]]\nname = \"air\"\nmaterial = \"gas\"\ndensity = 1.0\npressure = 1.0\nvelocity = " +
+           air_velocity + "\n" + toml::walls();
+  };
+  const stagger::Scene differing = stagger::load_scene(write(scene("[0.0, 0.0]")));
+  ASSERT_EQ(differing.warnings.size(), 1u);
+  EXPECT_CONTAINS(differing.warnings[0],
+                  "key 'region[1].velocity': 2 point(s) shared with region 'water' (region[0]) "
+                  "get different initial velocities");
+  EXPECT_CONTAINS(differing.warnings[0], "up to |dv| = 0.1); the first [[region]] in the file wins there");
+  EXPECT_TRUE(stagger::load_scene(write(scene("[0.1, 0.0]"))).warnings.empty());
+}
+
 }  // namespace

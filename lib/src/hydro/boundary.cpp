@@ -416,6 +416,12 @@ void apply_constraints(const Simulation::Impl& s, std::span<double> vx, std::spa
       px += s.point_mass[p] * vx[p];
       py += s.point_mass[p] * vy[p];
     }
+    if (!(mass > 0)) {
+      // rz: the copies of an axis point (an axially periodic cylinder) carry no mass (r = 0);
+      // each moved by its own corners' acceleration, they share the mean (was 0 / 0 = NaN).
+      mass = static_cast<double>(group.size()), px = py = 0;
+      for (Index p : group) px += vx[p], py += vy[p];
+    }
     for (Index p : group) {
       vx[p] = px / mass;
       vy[p] = py / mass;

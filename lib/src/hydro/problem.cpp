@@ -5,6 +5,7 @@
 #include <set>
 #include <sstream>
 
+#include "hydro/boundary_checks.hpp"
 #include "stagger/error.hpp"
 #include "stagger/option_table.hpp"
 #include "strength/strength_models.hpp"
@@ -99,6 +100,7 @@ void Problem::validate() const {
               "periodic boundary '" + b.tag + "': partner tag '" + b.partner + "' is not in the mesh");
     }
   }
+  if (const auto wrong = boundary_geometry_problem(*this)) throw Error(wrong->message);
 }
 
 }  // namespace stagger

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "hydro/boundary.hpp"
+#include "hydro/boundary_checks.hpp"
 #include "hydro/kernels/geometry.hpp"
 #include "hydro/kernels/heat_flux.hpp"
 #include "hydro/kernels/subzonal_pressure.hpp"
@@ -109,9 +110,7 @@ void setup_heat_neighbours(Simulation::Impl& s) {
 // rz (docs/algorithm.md §19): x is the radius. Points within round-off of the axis (a polar
 // mesh's cos 90 degrees) are put on it; a point at x < 0 is an error.
 void setup_axis(Mesh& m) {
-  double extent = 0;
-  for (Index p = 0; p < m.num_points(); ++p) extent = std::max({extent, std::abs(m.x[p]), std::abs(m.y[p])});
-  const double tolerance = 1e-12 * extent;
+  const double tolerance = axis_tolerance(m);
   for (Index p = 0; p < m.num_points(); ++p) {
     if (std::abs(m.x[p]) <= tolerance) {
       m.x[p] = 0;

@@ -439,6 +439,7 @@ Scene read_scene(const std::string& path, const std::vector<std::pair<std::strin
   root.finish();
   if (outline) return scene;  // no zones to validate or review: rank 0 did (docs/parallel.md)
 
+  check_boundary_geometry(document, scene);
   try {
     problem.validate();
   } catch (const Error& failure) {

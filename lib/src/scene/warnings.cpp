@@ -8,6 +8,7 @@
 #include <limits>
 #include <sstream>
 
+#include "hydro/boundary_checks.hpp"
 #include "scene_internal.hpp"
 #include "stagger/error.hpp"
 #include "strength/strength_models.hpp"
@@ -211,7 +212,97 @@ Untagged untagged_boundary_edges(const Mesh& mesh) {
   return result;
 }
 
+// The [[boundary]] key that names `tag`: "boundary[i].tag", "boundary[i].tags" or
+// "boundary[i].partner"; "boundary" if none does.
+std::string boundary_key(const toml::table& document, const std::string& tag) {
+  const toml::array* sections = document["boundary"].as_array();
+  for (std::size_t i = 0; sections && i < sections->size(); ++i) {
+    const toml::table* section = sections->get(i)->as_table();
+    if (!section) continue;
+    const std::string path = "boundary[" + std::to_string(i) + "].";
+    if (section->get("tag") && section->get("tag")->value<std::string>() == tag) return path + "tag";
+    if (const toml::array* tags = section->get("tags") ? section->get("tags")->as_array() : nullptr)
+      for (const toml::node& name : *tags)
+        if (name.value<std::string>() == tag) return path + "tags";
+  }
+  for (std::size_t i = 0; sections && i < sections->size(); ++i) {
+    const toml::table* section = sections->get(i)->as_table();
+    if (section && section->get("partner") && section->get("partner")->value<std::string>() == tag)
+      return "boundary[" + std::to_string(i) + "].partner";
+  }
+  return "boundary";
+}
+
+// Why the chosen [ale] mode never reads `key` (empty if it does; docs/ale.md, "Modes").
+std::string dead_ale_key(const AleOptions& ale, bool mode_given, const std::string& key) {
+  if (key == "mode") return {};
+  if (ale.mode == AleMode::lagrangian)
+    return mode_given ? "is ignored: mode = \"lagrangian\" never rezones or remaps; set mode = \"ale\" (or "
+                        "\"eulerian\") or remove the key"
+                      : "is ignored: [ale] has no mode, so the run is Lagrangian (no rezone, no remap); add mode = "
+                        "\"ale\" (or \"eulerian\") or remove the key";
+  if (ale.mode == AleMode::eulerian && key != "limiter")
+    return key == "remap_every" || key == "quality_trigger"
+               ? "is ignored: mode = \"eulerian\" remaps after every cycle; it is read by mode = \"ale\" only"
+               : "is ignored: mode = \"eulerian\" returns to the initial mesh (no rezone); it is read by mode = "
+                 "\"ale\" only";
+  if (ale.mode == AleMode::ale && key == "size_weight" && ale.rezone != AleRezone::reference_jacobian)
+    return "is ignored: it weighs a term of rezone = \"reference_jacobian\" only";
+  return {};
+}
+
+// Points shared by regions whose initial velocities differ there: the first [[region]] in
+// the file gives them its velocity (set_initial_velocities). The warning names the later
+// region of the first such point, the count and the largest difference.
+struct VelocityConflict {
+  std::size_t count = 0, first_region = 0, later_region = 0;
+  double x = 0, y = 0, difference = 0;
+};
+
+VelocityConflict shared_point_velocities(const Problem& problem) {
+  const Mesh& mesh = problem.mesh;
+  const Index np = mesh.num_points();
+  std::vector<int> first(np, -1);
+  std::vector<double> ux(np, 0), uy(np, 0);
+  std::vector<char> counted(np, 0);
+  VelocityConflict conflict;
+  const auto velocity = [](const SpaceFunction& f, double x, double y) { return f ? f(x, y) : 0.0; };
+  for (std::size_t i = 0; i < problem.regions.size(); ++i) {
+    const RegionSetup& setup = problem.regions[i];
+    const int r = mesh.region_index(setup.region);
+    if (r < 0) continue;
+    for (Index z = mesh.region_zone_begin[r]; z < mesh.region_zone_begin[r + 1]; ++z)
+      for (Index c = mesh.zone_corner_begin[z]; c < mesh.zone_corner_begin[z + 1]; ++c) {
+        const Index p = mesh.corner_point[c];
+        if (first[p] < 0) {
+          first[p] = static_cast<int>(i);
+          ux[p] = velocity(setup.velocity_x, mesh.x[p], mesh.y[p]);
+          uy[p] = velocity(setup.velocity_y, mesh.x[p], mesh.y[p]);
+          continue;
+        }
+        if (first[p] == static_cast<int>(i) || counted[p]) continue;
+        const double vx = velocity(setup.velocity_x, mesh.x[p], mesh.y[p]);
+        const double vy = velocity(setup.velocity_y, mesh.x[p], mesh.y[p]);
+        const double d = std::hypot(vx - ux[p], vy - uy[p]);
+        if (!(d > 1e-12 * std::max(std::hypot(vx, vy), std::hypot(ux[p], uy[p])))) continue;
+        counted[p] = 1;
+        if (conflict.count++ == 0)
+          conflict.first_region = static_cast<std::size_t>(first[p]), conflict.later_region = i, conflict.x = mesh.x[p],
+          conflict.y = mesh.y[p];
+        conflict.difference = std::max(conflict.difference, d);
+      }
+  }
+  return conflict;
+}
+
 }  // namespace
+
+void check_boundary_geometry(const toml::table& document, const Scene& scene) {
+  if (const auto wrong = boundary_geometry_problem(scene.problem))
+    throw Error(
+        Locator(document, scene.file).at(boundary_key(document, scene.problem.boundaries[wrong->boundary].tag)) + ": " +
+        wrong->message);
+}
 
 void review_scene(const toml::table& document, Scene& scene, const WarningThresholds& limits) {
   const Problem& problem = scene.problem;
@@ -333,6 +424,21 @@ void review_scene(const toml::table& document, Scene& scene, const WarningThresh
                                           show(bulk) + " of the EOS at t = 0: check the units of the two");
     }
   }
+
+  if (const toml::table* ale = document["ale"].as_table())
+    for (const auto& [name, value] : *ale)
+      if (const std::string why = dead_ale_key(problem.ale, ale->contains("mode"), std::string(name.str()));
+          !why.empty())
+        warn("ale." + std::string(name.str()), why);
+
+  if (const VelocityConflict conflict = shared_point_velocities(problem); conflict.count > 0)
+    warn("region[" + std::to_string(conflict.later_region) + "].velocity",
+         std::to_string(conflict.count) + " point(s) shared with region '" +
+             problem.regions[conflict.first_region].region + "' (region[" + std::to_string(conflict.first_region) +
+             "]) get different initial velocities from the two (e.g. at " + point_text(conflict.x, conflict.y) +
+             ", up to |dv| = " + show(conflict.difference) + "); the first [[region]] in the file wins there, so " +
+             "the order of the blocks sets the initial momentum: give the regions one velocity on their interface " +
+             "(or order the blocks as meant)");
 
   for (std::size_t r = 0; r < problem.regions.size(); ++r) {
     std::size_t count = 0;

@@ -465,4 +465,12 @@ TEST_F(SceneFile, SharedPointsOfRegionsWithDifferentVelocitiesGetAWarning) {
   EXPECT_TRUE(stagger::load_scene(write(scene("[0.1, 0.0]"))).warnings.empty());
 }
 
+// type = "fixed": a clamped boundary (docs/scenes.md), read and described.
+TEST_F(SceneFile, FixedBoundaryIsReadAndDescribed) {
+  const stagger::Scene scene = stagger::load_scene(write(edit("type = \"wall\"", "type = \"fixed\"")));
+  ASSERT_EQ(scene.problem.boundaries.size(), 4u);
+  EXPECT_EQ(scene.problem.boundaries[0].kind, stagger::BoundaryKind::fixed);
+  EXPECT_CONTAINS(stagger::describe(scene), "left (2 edges): fixed (v = 0, clamped)");
+}
+
 }  // namespace

@@ -55,6 +55,7 @@ enum class BoundaryKind {
   free,      ///< traction-free
   pressure,  ///< applied pressure p(t) on the boundary edges
   periodic,  ///< paired with `partner`; points matched by translation
+  fixed,     ///< clamped: v = 0, both components (no tangential slip); its work is zero
 };
 
 /// A boundary condition on the points and edges of one mesh tag (a physical curve).

@@ -310,12 +310,16 @@ void setup_boundaries(Simulation::Impl& s) {
   std::vector<Index> parent(mesh.num_points());
   std::iota(parent.begin(), parent.end(), 0);
   bool any_periodic = false;
+  std::vector<Index> fixed_points;
 
   for (std::size_t b = 0; b < bcs.size(); ++b) {
     const BoundaryCondition& bc = bcs[b];
     const BoundaryTag& tag = mesh.tags[mesh.tag_index(bc.tag)];
     switch (bc.kind) {
       case BoundaryKind::free:
+        break;
+      case BoundaryKind::fixed:
+        fixed_points.insert(fixed_points.end(), tag.points.begin(), tag.points.end());
         break;
       case BoundaryKind::pressure:
         for (const auto& edge : tag.edges) s.pressure_edges.push_back({edge[0], edge[1], static_cast<int>(b)});
@@ -374,6 +378,8 @@ void setup_boundaries(Simulation::Impl& s) {
   if (s.rz)
     for (Index p = 0; p < mesh.num_points(); ++p)
       if (mesh.x[p] == 0) add_candidate(candidates[p], {-1.0, 0.0, -1});
+  // A fixed (clamped) point: v = 0, whatever else holds there (two normals, both g = 0).
+  for (Index p : fixed_points) candidates[p] = {{1.0, 0.0, -1}, {0.0, 1.0, -1}};
 
   for (auto& [point, list] : candidates) {
     PointConstraint c;

@@ -27,6 +27,8 @@ const char* kind_word(BoundaryKind kind) {
       return "pressure";
     case BoundaryKind::periodic:
       return "periodic";
+    case BoundaryKind::fixed:
+      return "fixed";
   }
   return "?";
 }

@@ -79,6 +79,8 @@ const char* boundary_type(BoundaryKind kind) {
       return "pressure";
     case BoundaryKind::periodic:
       return "periodic";
+    case BoundaryKind::fixed:
+      return "fixed";
   }
   return "?";
 }

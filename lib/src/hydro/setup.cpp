@@ -54,7 +54,8 @@ void setup_edge_continuation(Simulation::Impl& s) {
   std::set<std::pair<Index, Index>> mirror_edges;  // walls, symmetry planes, pistons
   for (const auto& bc : s.problem.boundaries) {
     const float r = (bc.kind == BoundaryKind::free || bc.kind == BoundaryKind::pressure) ? 0.f : 1.f;
-    const bool mirror = bc.kind == BoundaryKind::wall || bc.kind == BoundaryKind::velocity;
+    const bool mirror =
+        bc.kind == BoundaryKind::wall || bc.kind == BoundaryKind::velocity || bc.kind == BoundaryKind::fixed;
     for (const auto& e : m.tags[m.tag_index(bc.tag)].edges) {
       boundary_ratio[{e[0], e[1]}] = r;
       if (mirror) mirror_edges.insert({e[0], e[1]});

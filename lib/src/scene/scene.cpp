@@ -310,9 +310,11 @@ void read_boundaries(Section& root, const Mesh& mesh, double t_end, Problem& pro
     }
     for (const auto& tag : tags) claim(section, tag_key, tag);
     BoundaryCondition condition;
-    const std::string type = section.choice("type", {"wall", "velocity", "free", "pressure", "periodic"});
+    const std::string type = section.choice("type", {"wall", "velocity", "free", "pressure", "periodic", "fixed"});
     if (type == "wall") {
       condition.kind = BoundaryKind::wall;
+    } else if (type == "fixed") {
+      condition.kind = BoundaryKind::fixed;
     } else if (type == "free") {
       condition.kind = BoundaryKind::free;
     } else if (type == "velocity") {

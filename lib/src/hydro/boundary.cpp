@@ -60,16 +60,47 @@ WallEdge wall_edge(const Mesh& mesh, Index a, Index b, int bc) {
   return w;
 }
 
+// The points q for which the side p-q lies on the mesh's boundary (in one zone only).
+std::vector<Index> boundary_neighbours(const Mesh& m, Index p) {
+  std::map<Index, int> sides;
+  for (Index j = m.point_corner_begin[p]; j < m.point_corner_begin[p + 1]; ++j) {
+    const Index c = m.point_corners[j], z = m.corner_zone[c], b = m.zone_corner_begin[z];
+    const Index n = m.zone_corner_begin[z + 1] - b, k = c - b;
+    ++sides[m.corner_point[b + (k + 1) % n]];
+    ++sides[m.corner_point[b + (k + n - 1) % n]];
+  }
+  std::vector<Index> out;
+  for (const auto& [q, count] : sides)
+    if (count == 1) out.push_back(q);
+  return out;
+}
+
+// The mesh's own boundary goes on from the open end `end` of a wall along the ray's direction
+// (tx, ty), within the 30 degrees of a curved wall: the wall stops there, no ray (a ray would
+// call the material of that boundary moving out "through the wall").
+bool boundary_continues_the_wall(const Mesh& m, Index end, Index other, double tx, double ty) {
+  for (Index q : boundary_neighbours(m, end)) {
+    if (q == other) continue;
+    const double dx = m.x[q] - m.x[end], dy = m.y[q] - m.y[end];
+    if (dx * tx + dy * ty > std::cos(M_PI / 6) * std::hypot(dx, dy)) return true;
+  }
+  return false;
+}
+
 // Rays at the open ends of the walls and the grid over the wall edges (docs/algorithm.md §10).
 void setup_wall_check(Simulation::Impl& s) {
   std::vector<WallEdge>& edges = s.wall_edges;
   if (edges.empty()) return;
-  // An end point of one wall edge only is an open end: the wall goes on along that edge.
+  // An end point of one wall edge only is an open end: the wall goes on along that edge,
+  // unless the mesh's boundary itself goes on along its line there.
   std::map<Index, int> uses;
   for (const WallEdge& w : edges) ++uses[w.a], ++uses[w.b];
   for (const WallEdge& w : edges) {
     for (const bool at_a : {true, false}) {
       if (uses[at_a ? w.a : w.b] != 1) continue;
+      if (at_a ? boundary_continues_the_wall(s.mesh(), w.a, w.b, -w.tx, -w.ty)
+               : boundary_continues_the_wall(s.mesh(), w.b, w.a, w.tx, w.ty))
+        continue;
       WallEdge ray = w;
       ray.b = -1;
       if (at_a) {

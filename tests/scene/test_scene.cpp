@@ -473,4 +473,23 @@ TEST_F(SceneFile, FixedBoundaryIsReadAndDescribed) {
   EXPECT_CONTAINS(stagger::describe(scene), "left (2 edges): fixed (v = 0, clamped)");
 }
 
+// A burn that lights no zone before time.end (lit after the end, or too slow to arrive)
+// never burns: warned, naming the key (docs/scenes.md "Warnings").
+TEST_F(SceneFile, ABurnLitAfterTheEndGetsAWarning) {
+  const auto warnings_of = [&](const std::string& burn) {
+    const std::string text = toml::time("0.5") + toml::rectangle("[0.0, 1.0]", "[0.0, 0.5]", 4, 2) +
+                             "[[material]]\nname = \"he\"\neos = \"jwl\"\nA = 8.545\nB = 0.205\nR1 = 4.6\nR2 = "
+                             "1.35\nomega = 0.25\nrho0 = 1.84\n[material.burn]\n" +
+                             burn + toml::region("he", "1.84", "1e-6") + toml::walls();
+    std::string all;
+    for (const std::string& w : stagger::load_scene(write(text)).warnings) all += w + "\n";
+    return all;
+  };
+  EXPECT_CONTAINS(warnings_of("detonation_speed = 0.88\npoints = [[0.0, 0.0]]\ntime_offset = 1.0\n"),
+                  "key 'material[0].burn.time_offset': no zone of material 'he' lights before time.end = 0.5");
+  EXPECT_CONTAINS(warnings_of("detonation_speed = 1e-3\npoints = [[-1.0, 0.0]]\n"),
+                  "key 'material[0].burn.detonation_speed': no zone of material 'he' lights before time.end");
+  EXPECT_EQ(warnings_of("detonation_speed = 0.88\npoints = [[0.0, 0.0]]\n"), "");
+}
+
 }  // namespace

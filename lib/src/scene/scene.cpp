@@ -151,6 +151,11 @@ Material read_material(Section& section) {
     Burn burn;
     burn.detonation_speed = burn_section->number("detonation_speed");
     if (!(burn.detonation_speed > 0)) burn_section->fail("detonation_speed", "must be > 0");
+    if (!std::isnormal(burn.detonation_speed))
+      burn_section->fail("detonation_speed",
+                         "must be a normal number, got the denormal " + show(burn.detonation_speed) +
+                             ": the detonation would never travel",
+                         "check the value and its units");
     if (const toml::node* points = burn_section->find("points")) {
       const auto* array = points->as_array();
       if (array == nullptr)

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <sstream>
 
@@ -295,6 +296,63 @@ VelocityConflict shared_point_velocities(const Problem& problem) {
   return conflict;
 }
 
+// A deposit whose point lies outside the mesh by more than the zones there are wide (and, for
+// a Gaussian, three radii): its energy would land in the zones around the nearest point.
+void check_deposits(const Problem& problem, const Locator& key) {
+  const Mesh& mesh = problem.mesh;
+  for (std::size_t k = 0; k < problem.deposits.size(); ++k) {
+    const EnergyDeposit& deposit = problem.deposits[k];
+    Index nearest = 0;
+    double best = std::numeric_limits<double>::infinity();
+    for (Index p = 0; p < mesh.num_points(); ++p) {
+      const double d = std::hypot(mesh.x[p] - deposit.x, mesh.y[p] - deposit.y);
+      if (d < best) best = d, nearest = p;
+    }
+    double width = 0;
+    for (Index j = mesh.point_corner_begin[nearest]; j < mesh.point_corner_begin[nearest + 1]; ++j)
+      width = std::max(width, longest_chord(mesh, mesh.corner_zone[mesh.point_corners[j]]));
+    const double reach = width + 3 * deposit.radius;
+    if (best > reach)
+      throw Error(key.at("deposit[" + std::to_string(k) + "].x") + ": the deposit at " +
+                  point_text(deposit.x, deposit.y) + " is " + show(best) + " from the nearest mesh point " +
+                  std::to_string(nearest) + " " + point_text(mesh.x[nearest], mesh.y[nearest]) +
+                  ", more than the zones there are wide (" + show(width) + ")" +
+                  (deposit.radius > 0 ? " plus 3 radii" : "") +
+                  ": it lies outside the mesh and its energy would go into the zones nearest to it; check its "
+                  "coordinates (and their units)");
+  }
+}
+
+// The earliest lighting time of each burning material's zones (as the set-up computes it,
+// time_offset + distance / D): after time.end nothing burns.
+void warn_unlit_burns(const Problem& problem, const std::vector<ZoneState>& states,
+                      const std::function<void(const std::string&, const std::string&)>& warn) {
+  const Mesh& mesh = problem.mesh;
+  for (std::size_t m = 0; m < problem.materials.size(); ++m) {
+    if (!problem.materials[m].burn) continue;
+    const Burn& burn = *problem.materials[m].burn;
+    double earliest = std::numeric_limits<double>::infinity();
+    for (Index z = 0; z < mesh.num_zones(); ++z) {
+      if (states[z].material != static_cast<int>(m)) continue;
+      const double cx = states[z].centre_x, cy = states[z].centre_y;
+      double distance = std::numeric_limits<double>::infinity();
+      for (const auto& pt : burn.points) distance = std::min(distance, std::hypot(cx - pt[0], cy - pt[1]));
+      if (burn.plane) {
+        const auto& pl = *burn.plane;
+        distance = std::min(distance, std::abs((cx - pl[0]) * pl[2] + (cy - pl[1]) * pl[3]) / std::hypot(pl[2], pl[3]));
+      }
+      earliest = std::min(earliest, burn.time_offset + distance / burn.detonation_speed);
+    }
+    if (!(earliest > problem.t_end)) continue;  // also: no zone of the material
+    const std::string path = "material[" + std::to_string(m) + "].burn.";
+    warn(path + (burn.time_offset >= problem.t_end ? "time_offset" : "detonation_speed"),
+         "no zone of material '" + problem.materials[m].name + "' lights before time.end = " + show(problem.t_end) +
+             " (the first at t = " + show(earliest) + " = time_offset " + show(burn.time_offset) +
+             " + distance / detonation_speed " + show(burn.detonation_speed) +
+             "): nothing will burn; check time_offset, the detonation points and the units of the speed");
+  }
+}
+
 }  // namespace
 
 void check_boundary_geometry(const toml::table& document, const Scene& scene) {
@@ -368,7 +426,10 @@ void review_scene(const toml::table& document, Scene& scene, const WarningThresh
                 " dumps, more than output.max_dumps = " + std::to_string(control.max_dumps) +
                 "; raise output.dump_interval (or output.max_dumps if you mean it)");
 
+  check_deposits(problem, key);
+
   // Warnings from here on.
+  warn_unlit_burns(problem, states, warn);
   // Few cycles: from the smallest plausible step (signal speed c + |v| + drivers), so the
   // count is an upper bound; many cycles: from the largest (c alone), a lower bound.
   auto capped = [&](double dt) { return options.dt_max > 0 ? std::min(dt, options.dt_max) : dt; };

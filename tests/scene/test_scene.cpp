@@ -492,4 +492,35 @@ TEST_F(SceneFile, ABurnLitAfterTheEndGetsAWarning) {
   EXPECT_EQ(warnings_of("detonation_speed = 0.88\npoints = [[0.0, 0.0]]\n"), "");
 }
 
+// Unit slips (docs/scenes.md "Warnings"): constants implausible for the units a scene states in
+// scene.units, and, whatever the units, a JWL A far from rho0 D^2 or a region density far from
+// its material's rho0.
+TEST_F(SceneFile, ConstantsImplausibleForTheSceneUnitsGetAWarning) {
+  const auto warnings_of = [&](const std::string& units, const std::string& he, const std::string& density) {
+    const std::string text =
+        "[scene]\nunits = \"" + units + "\"\n" + toml::time("0.5") + toml::rectangle("[0.0, 1.0]", "[0.0, 0.5]", 4, 2) +
+        "[[material]]\nname = \"he\"\neos = \"jwl\"\n" + he +
+        "R1 = 4.6\nR2 = 1.35\nomega = 0.25\n[material.burn]\ndetonation_speed = 0.88\npoints = [[0.0, 0.0]]\n" +
+        toml::region("he", density, "1e-6") + toml::walls();
+    std::string all;
+    for (const std::string& w : stagger::load_scene(write(text)).warnings) all += w + "\n";
+    return all;
+  };
+  const std::string mbar = "A = 8.545\nB = 0.205\nrho0 = 1.84\n";
+  EXPECT_EQ(warnings_of("cm, g, us, Mbar", mbar, "1.84"), "");
+  const std::string pascal = warnings_of("cm, g, us, Mbar", "A = 8.545e11\nB = 2.05e10\nrho0 = 1.84\n", "1.84");
+  EXPECT_CONTAINS(pascal,
+                  "key 'material[0].A': 8.545e+11 is implausible for a JWL constant in the scene's units "
+                  "(scene.units = \"cm, g, us, Mbar\": 1e-06 to 100 Mbar)");
+  EXPECT_CONTAINS(pascal, "key 'material[0].B': 2.05e+10 is implausible");
+  // Without stated units: A against rho0 D^2 of the burn.
+  EXPECT_CONTAINS(warnings_of("", "A = 8.545e11\nB = 0.205\nrho0 = 1.84\n", "1.84"),
+                  "key 'material[0].A': 8.545e+11 is 5.99");
+  // An SI scene with the density in g/cm^3 (rho0 too), and a region density rho0 / 1000.
+  EXPECT_CONTAINS(warnings_of("SI (m, kg, s, Pa)", "A = 8.545e11\nB = 2.05e10\nrho0 = 1.84\n", "1.84"),
+                  "key 'material[0].rho0': 1.84 is implausible for the density of a condensed material");
+  EXPECT_CONTAINS(warnings_of("cm, g, us, Mbar", "A = 8.545\nB = 0.205\nrho0 = 1.84\n", "0.00184"),
+                  "key 'region[0].density': 0.00184 at (0.125, 0.125) is 0.001 times the rho0 = 1.84");
+}
+
 }  // namespace

@@ -3,10 +3,12 @@
 #include "warnings.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "hydro/boundary_checks.hpp"
@@ -353,6 +355,96 @@ void warn_unlit_burns(const Problem& problem, const std::vector<ZoneState>& stat
   }
 }
 
+// The unit system a scene states in scene.units, by its words: "Mbar" (cm, g, us, Mbar) or
+// "SI" / "kg" / "Pa" (m, kg, s, Pa); anything else (dimensionless, none) is not checked.
+struct UnitSystem {
+  std::string text;  // scene.units as written
+  double density_lo = 0, density_hi = 0, speed_lo = 0, speed_hi = 0, pressure_lo = 0, pressure_hi = 0;
+  const char *density = "", *speed = "", *pressure = "", *slip = "";
+};
+
+std::optional<UnitSystem> stated_units(const toml::table& document) {
+  const std::optional<std::string> text = document["scene"]["units"].value<std::string>();
+  if (!text) return std::nullopt;
+  bool si = false, mbar = false;
+  std::string word;
+  for (const char c : *text + " ") {
+    if (std::isalnum(static_cast<unsigned char>(c))) {
+      word += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      continue;
+    }
+    si = si || word == "si" || word == "kg" || word == "pa";
+    mbar = mbar || word == "mbar";
+    word.clear();
+  }
+  // Condensed matter: densities 0.05 to 50 g/cm^3, sound speeds 0.01 to 2 cm/us, moduli and
+  // JWL constants 1e-6 to 100 Mbar (a decade or more beyond real materials each way).
+  if (mbar) return UnitSystem{*text, 0.05, 50, 0.01, 2, 1e-6, 100, "g/cm^3", "cm/us", "Mbar", "SI"};
+  if (si) return UnitSystem{*text, 50, 5e4, 100, 2e4, 1e5, 1e13, "kg/m^3", "m/s", "Pa", "g/cm^3, cm/us or Mbar"};
+  return std::nullopt;
+}
+
+// Densities and EOS constants implausible for the scene's stated units (JWL A and B in Pa in a
+// Mbar scene, a density in g/cm^3 in an SI scene), and, whatever the units, a JWL A far from
+// rho0 D^2 of its burn and a region's density far from its material's rho0.
+void warn_implausible_units(const toml::table& document, const Problem& problem, const std::vector<ZoneState>& states,
+                            const std::function<void(const std::string&, const std::string&)>& warn) {
+  const std::optional<UnitSystem> units = stated_units(document);
+  const auto check = [&](const std::string& path, double value, double lo, double hi, const char* unit,
+                         const char* what) {
+    if (!units || (value >= lo && value <= hi)) return;
+    warn(path, show(value) + " is implausible for " + what + " in the scene's units (scene.units = \"" + units->text +
+                   "\": " + show(lo) + " to " + show(hi) + " " + unit + "); check its units (a value in " +
+                   units->slip + "?)");
+  };
+  for (std::size_t m = 0; m < problem.materials.size(); ++m) {
+    const Material& material = problem.materials[m];
+    const std::string path = "material[" + std::to_string(m) + "].";
+    double rho0 = 0;
+    if (const auto* mg = std::get_if<MieGruneisen>(&material.eos)) {
+      rho0 = mg->rho0;
+      if (units) check(path + "a0", mg->a0, units->speed_lo, units->speed_hi, units->speed, "a sound speed");
+    } else if (const auto* jwl = std::get_if<Jwl>(&material.eos)) {
+      rho0 = jwl->rho0;
+      if (units) {
+        check(path + "A", jwl->A, units->pressure_lo, units->pressure_hi, units->pressure, "a JWL constant");
+        check(path + "B", jwl->B, units->pressure_lo, units->pressure_hi, units->pressure, "a JWL constant");
+      }
+      if (material.burn) {
+        const double scale = jwl->rho0 * material.burn->detonation_speed * material.burn->detonation_speed;
+        const double ratio = jwl->A / scale;
+        if (!(ratio >= 0.1 && ratio <= 1000))
+          warn(path + "A", show(jwl->A) + " is " + show(ratio) + " times rho0 D^2 = " + show(scale) +
+                               " of its burn (real explosives: 1 to 100): A, rho0 and detonation_speed are in "
+                               "different units");
+      }
+    } else if (const auto* sg = std::get_if<StiffenedGas>(&material.eos)) {
+      if (units && sg->p_inf > 0)
+        check(path + "p_inf", sg->p_inf, units->pressure_lo, units->pressure_hi, units->pressure, "a pressure");
+    }
+    if (units && rho0 > 0)
+      check(path + "rho0", rho0, units->density_lo, units->density_hi, units->density,
+            "the density of a condensed material");
+    if (units && material.strength) {
+      const double mu = shear_modulus(*material.strength, {});
+      if (mu > 0)
+        check(path + "strength.shear_modulus", mu, units->pressure_lo, units->pressure_hi, units->pressure,
+              "a shear modulus");
+    }
+    // A region's density against its material's reference density (the first zone's).
+    for (std::size_t r = 0; r < problem.regions.size() && rho0 > 0; ++r) {
+      const auto first = std::find_if(states.begin(), states.end(), [&](const ZoneState& s) {
+        return s.region == static_cast<int>(r) && s.material == static_cast<int>(m);
+      });
+      if (first == states.end() || (first->rho >= 0.1 * rho0 && first->rho <= 10 * rho0)) continue;
+      warn("region[" + std::to_string(r) + "].density",
+           show(first->rho) + " at " + point_text(first->centre_x, first->centre_y) + " is " + show(first->rho / rho0) +
+               " times the rho0 = " + show(rho0) + " of material '" + material.name +
+               "': the two are in different units");
+    }
+  }
+}
+
 }  // namespace
 
 void check_boundary_geometry(const toml::table& document, const Scene& scene) {
@@ -374,13 +466,21 @@ void review_scene(const toml::table& document, Scene& scene, const WarningThresh
   // The first time step, estimated as the set-up will take it: cfl * L / c over the zones
   // (no artificial viscosity yet, so the estimate is an upper bound), then dt_init, dt_max.
   const std::vector<ZoneState> states = initial_states(problem);
+  // Unit slips first: an error below (a collapsing first step) is then likely theirs, and says so.
+  std::vector<std::string> unit_warnings;
+  warn_implausible_units(document, problem, states, [&](const std::string& path, const std::string& what) {
+    unit_warnings.push_back(key.at(path) + ": " + what);
+  });
+  const auto failure = [&](const std::string& message) {
+    return Error(unit_warnings.empty() ? message : message + " (note: " + unit_warnings.front() + ")");
+  };
   for (const ZoneState& s : states)
     if (s.material >= 0 && !std::isfinite(s.c))
-      throw Error(key.at("material[" + std::to_string(s.material) + "]") + ": the initial state at " +
-                  point_text(s.centre_x, s.centre_y) + " (region '" + problem.regions[s.region].region + "', density " +
-                  show(s.rho) +
-                  ") has a non-finite sound speed; check the EOS constants and the "
-                  "initial state");
+      throw failure(key.at("material[" + std::to_string(s.material) + "]") + ": the initial state at " +
+                    point_text(s.centre_x, s.centre_y) + " (region '" + problem.regions[s.region].region +
+                    "', density " + show(s.rho) +
+                    ") has a non-finite sound speed; check the EOS constants and the "
+                    "initial state");
   const double drive = driver_speed(problem, states);
   double cfl_length_over_c = std::numeric_limits<double>::infinity();   // min L / c
   double length_over_signal = std::numeric_limits<double>::infinity();  // min L / (c + |v| + drive)
@@ -395,41 +495,43 @@ void review_scene(const toml::table& document, Scene& scene, const WarningThresh
   const std::string dt_min_text =
       options.dt_min > 0 ? "numerics.dt_min = " + show(dt_min) : "dt_min = 1e-8 time.end = " + show(dt_min);
   if (options.dt_max > 0 && options.dt_max < dt_min)
-    throw Error(key.at("numerics.dt_max") + ": " + show(options.dt_max) + " is below " + dt_min_text +
-                ": the first step would collapse; raise numerics.dt_max (or lower numerics.dt_min)");
+    throw failure(key.at("numerics.dt_max") + ": " + show(options.dt_max) + " is below " + dt_min_text +
+                  ": the first step would collapse; raise numerics.dt_max (or lower numerics.dt_min)");
   if (options.dt_init > 0 && options.dt_init < dt_min)
-    throw Error(key.at("numerics.dt_init") + ": " + show(options.dt_init) + " is below " + dt_min_text +
-                ": the first step would collapse; raise numerics.dt_init (or lower numerics.dt_min)");
+    throw failure(key.at("numerics.dt_init") + ": " + show(options.dt_init) + " is below " + dt_min_text +
+                  ": the first step would collapse; raise numerics.dt_init (or lower numerics.dt_min)");
   if (std::isfinite(cfl_length_over_c)) {
     const double dt_cfl = options.cfl * cfl_length_over_c;
     if (dt_cfl < dt_min) {
       const std::string estimate = "the CFL time step at t = 0 (about " + show(dt_cfl) + ")";
       if (options.dt_min > 0)
-        throw Error(key.at("numerics.dt_min") + ": " + show(dt_min) + " is above " + estimate +
-                    ": the first step would collapse; lower numerics.dt_min");
+        throw failure(key.at("numerics.dt_min") + ": " + show(dt_min) + " is above " + estimate +
+                      ": the first step would collapse; lower numerics.dt_min");
       if (HydroOptions{}.cfl * cfl_length_over_c >= dt_min)
-        throw Error(key.at("numerics.cfl") + ": " + show(options.cfl) + " puts " + estimate + " below " + dt_min_text +
-                    ": the first step would collapse; use a cfl near the default " + show(HydroOptions{}.cfl));
-      throw Error(key.at("time.end") + ": " + show(t_end) + " is " +
-                  (std::isfinite(t_end / dt_cfl) ? show(t_end / dt_cfl) : std::string("over 1e300")) + " times " +
-                  estimate +
-                  ", and the step may not fall below 1e-8 time.end: the run would stop at once; check the units of "
-                  "time.end");
+        throw failure(key.at("numerics.cfl") + ": " + show(options.cfl) + " puts " + estimate + " below " +
+                      dt_min_text + ": the first step would collapse; use a cfl near the default " +
+                      show(HydroOptions{}.cfl));
+      throw failure(key.at("time.end") + ": " + show(t_end) + " is " +
+                    (std::isfinite(t_end / dt_cfl) ? show(t_end / dt_cfl) : std::string("over 1e300")) + " times " +
+                    estimate +
+                    ", and the step may not fall below 1e-8 time.end: the run would stop at once; check the units of "
+                    "time.end");
     }
   }
 
   // Dumps: refused above output.max_dumps (a tiny interval would fill the disk).
   const long dumps = estimated_dumps(control, problem.t_end);
   if (dumps > control.max_dumps)
-    throw Error(key.at("output.dump_interval") + ": " + show(control.dump_interval) + " with time.end = " +
-                show(problem.t_end) + " gives " + show(std::floor(problem.t_end / control.dump_interval) + 2) +
-                " dumps, more than output.max_dumps = " + std::to_string(control.max_dumps) +
-                "; raise output.dump_interval (or output.max_dumps if you mean it)");
+    throw failure(key.at("output.dump_interval") + ": " + show(control.dump_interval) + " with time.end = " +
+                  show(problem.t_end) + " gives " + show(std::floor(problem.t_end / control.dump_interval) + 2) +
+                  " dumps, more than output.max_dumps = " + std::to_string(control.max_dumps) +
+                  "; raise output.dump_interval (or output.max_dumps if you mean it)");
 
   check_deposits(problem, key);
 
   // Warnings from here on.
   warn_unlit_burns(problem, states, warn);
+  scene.warnings.insert(scene.warnings.end(), unit_warnings.begin(), unit_warnings.end());
   // Few cycles: from the smallest plausible step (signal speed c + |v| + drivers), so the
   // count is an upper bound; many cycles: from the largest (c alone), a lower bound.
   auto capped = [&](double dt) { return options.dt_max > 0 ? std::min(dt, options.dt_max) : dt; };

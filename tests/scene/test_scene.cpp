@@ -523,4 +523,16 @@ TEST_F(SceneFile, ConstantsImplausibleForTheSceneUnitsGetAWarning) {
                   "key 'region[0].density': 0.00184 at (0.125, 0.125) is 0.001 times the rho0 = 1.84");
 }
 
+// type = "transmitting": the far-field pressure is the adjacent zone's at t = 0, or `pressure`.
+TEST_F(SceneFile, TransmittingBoundaryIsReadAndDescribed) {
+  const stagger::Scene initial = stagger::load_scene(write(edit("type = \"wall\"", "type = \"transmitting\"")));
+  EXPECT_EQ(initial.problem.boundaries[0].kind, stagger::BoundaryKind::transmitting);
+  EXPECT_TRUE(initial.problem.boundaries[0].far_field_from_initial_state);
+  EXPECT_CONTAINS(stagger::describe(initial), "left (2 edges): transmitting (p = p0 + rho c u.n)");
+  const stagger::Scene given =
+      stagger::load_scene(write(edit("type = \"wall\"", "type = \"transmitting\"\npressure = \"1 + t\"")));
+  EXPECT_FALSE(given.problem.boundaries[0].far_field_from_initial_state);
+  EXPECT_DOUBLE_EQ(given.problem.boundaries[0].pressure(0.5), 1.5);
+}
+
 }  // namespace

@@ -46,6 +46,16 @@ void add_candidate(std::vector<Candidate>& list, Candidate c) {
   list.push_back(c);
 }
 
+// The zone whose side runs a -> b (the boundary edge's zone, in its CCW order).
+Index edge_zone(const Mesh& mesh, Index a, Index b) {
+  for (Index j = mesh.point_corner_begin[a]; j < mesh.point_corner_begin[a + 1]; ++j) {
+    const Index c = mesh.point_corners[j], z = mesh.corner_zone[c];
+    const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
+    if (mesh.corner_point[c + 1 < end ? c + 1 : begin] == b) return z;
+  }
+  throw Error("boundary edge " + std::to_string(a) + "-" + std::to_string(b) + " is the side of no zone");
+}
+
 // A wall edge a -> b of the initial mesh (CCW zone order: the domain is on its left).
 WallEdge wall_edge(const Mesh& mesh, Index a, Index b, int bc) {
   WallEdge w;
@@ -355,6 +365,10 @@ void setup_boundaries(Simulation::Impl& s) {
       case BoundaryKind::pressure:
         for (const auto& edge : tag.edges) s.pressure_edges.push_back({edge[0], edge[1], static_cast<int>(b)});
         break;
+      case BoundaryKind::transmitting:
+        for (const auto& edge : tag.edges)
+          s.pressure_edges.push_back({edge[0], edge[1], static_cast<int>(b), edge_zone(mesh, edge[0], edge[1])});
+        break;
       case BoundaryKind::wall:
       case BoundaryKind::velocity: {
         int velocity_index = -1;
@@ -529,11 +543,19 @@ void pressure_forces_in(const Simulation::Impl& s, std::span<const double> x, st
   std::fill(fx.begin(), fx.end(), 0.0);
   std::fill(fy.begin(), fy.end(), 0.0);
   for (const auto& edge : s.pressure_edges) {
-    const double p = s.problem.boundaries[edge.bc].pressure(t);
+    const BoundaryCondition& bc = s.problem.boundaries[edge.bc];
+    double p = edge.zone >= 0 && bc.far_field_from_initial_state ? edge.ambient : bc.pressure(t);
+    if (edge.zone >= 0) {
+      // Transmitting: p0 + rho c u.n, u.n the edge's outward normal velocity at t^n (the
+      // impedance of the zone beside it: an outgoing plane wave leaves without reflection).
+      const double nx = y[edge.b] - y[edge.a], ny = x[edge.a] - x[edge.b], len = std::hypot(nx, ny);
+      const double un = 0.5 * ((s.vx[edge.a] + s.vx[edge.b]) * nx + (s.vy[edge.a] + s.vy[edge.b]) * ny) / len;
+      p += s.rho[edge.zone] * s.c[edge.zone] * un;
+    }
     if (!std::isfinite(p)) {
       std::ostringstream msg;
-      msg << "boundary '" << s.problem.boundaries[edge.bc].tag << "': the applied pressure is not finite at t = " << t
-          << " (" << p << "): fix its expression";
+      msg << "boundary '" << bc.tag << "': the applied pressure is not finite at t = " << t << " (" << p
+          << "): fix its expression";
       throw Error(msg.str());
     }
     const double dx = x[edge.b] - x[edge.a], dy = y[edge.b] - y[edge.a];

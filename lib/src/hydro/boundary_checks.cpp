@@ -27,6 +27,8 @@ const char* kind_word(BoundaryKind kind) {
       return "pressure";
     case BoundaryKind::periodic:
       return "periodic";
+    case BoundaryKind::transmitting:
+      return "transmitting";
     case BoundaryKind::fixed:
       return "fixed";
   }
@@ -65,7 +67,7 @@ std::string rz_problem(const Mesh& mesh, const BoundaryCondition& bc) {
   std::array<Index, 2> first{};
   std::ostringstream msg;
   msg.precision(6);
-  if (bc.kind == BoundaryKind::velocity || bc.kind == BoundaryKind::pressure) {
+  if (bc.kind == BoundaryKind::velocity || bc.kind == BoundaryKind::pressure || bc.kind == BoundaryKind::transmitting) {
     const std::size_t n = count_edges(tag, on_axis, first);
     if (n == 0) return {};
     msg << head(bc) << ": " << n << " of its " << tag.edges.size() << " edges lie on the axis x = 0 of "
@@ -74,8 +76,8 @@ std::string rz_problem(const Mesh& mesh, const BoundaryCondition& bc) {
       msg << "the axis keeps v_r = 0 by itself and a velocity condition there can only prescribe v_r (the energy "
              "audit would not close): give the axis type = \"wall\" or \"free\" (both leave it the symmetry line)";
     else
-      msg << "the axis is a line of zero area (r = 0), so a pressure there does nothing: give the axis type = "
-             "\"free\" or \"wall\"";
+      msg << "the axis is a line of zero area (r = 0), so a " << kind_word(bc.kind)
+          << " condition there does nothing: give the axis type = \"free\" or \"wall\"";
     return msg.str();
   }
   if (bc.kind != BoundaryKind::periodic || mesh.tag_index(bc.partner) < 0) return {};

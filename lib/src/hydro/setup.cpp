@@ -53,7 +53,10 @@ void setup_edge_continuation(Simulation::Impl& s) {
   std::map<std::pair<Index, Index>, float> boundary_ratio;
   std::set<std::pair<Index, Index>> mirror_edges;  // walls, symmetry planes, pistons
   for (const auto& bc : s.problem.boundaries) {
-    const float r = (bc.kind == BoundaryKind::free || bc.kind == BoundaryKind::pressure) ? 0.f : 1.f;
+    const float r =
+        (bc.kind == BoundaryKind::free || bc.kind == BoundaryKind::pressure || bc.kind == BoundaryKind::transmitting)
+            ? 0.f
+            : 1.f;
     const bool mirror =
         bc.kind == BoundaryKind::wall || bc.kind == BoundaryKind::velocity || bc.kind == BoundaryKind::fixed;
     for (const auto& e : m.tags[m.tag_index(bc.tag)].edges) {
@@ -440,6 +443,9 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
   // Constrained points carry their prescribed velocity from t = 0 (no impulse in step one).
   apply_constraints(*this, vx, vy, 0.0);
   recompute_state();
+  // Transmitting boundaries: the far-field pressure of each edge, its zone's at t = 0.
+  for (PressureEdge& edge : pressure_edges)
+    if (edge.zone >= 0) edge.ambient = p[edge.zone];
   energy_initial = kinetic_energy() + internal_energy();
   digest = setup_digest(*this);
 #ifdef __GLIBC__

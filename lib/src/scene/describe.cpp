@@ -22,6 +22,8 @@ const char* kind_name(BoundaryKind kind) {
       return "applied pressure";
     case BoundaryKind::periodic:
       return "periodic";
+    case BoundaryKind::transmitting:
+      return "transmitting (p = p0 + rho c u.n)";
     case BoundaryKind::fixed:
       return "fixed (v = 0, clamped)";
   }

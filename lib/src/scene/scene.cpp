@@ -315,11 +315,21 @@ void read_boundaries(Section& root, const Mesh& mesh, double t_end, Problem& pro
     }
     for (const auto& tag : tags) claim(section, tag_key, tag);
     BoundaryCondition condition;
-    const std::string type = section.choice("type", {"wall", "velocity", "free", "pressure", "periodic", "fixed"});
+    const std::string type =
+        section.choice("type", {"wall", "velocity", "free", "pressure", "periodic", "fixed", "transmitting"});
     if (type == "wall") {
       condition.kind = BoundaryKind::wall;
     } else if (type == "fixed") {
       condition.kind = BoundaryKind::fixed;
+    } else if (type == "transmitting") {
+      condition.kind = BoundaryKind::transmitting;
+      // The far-field pressure: given, or the adjacent zone's at t = 0 (docs/scenes.md).
+      condition.far_field_from_initial_state = !section.has("pressure");
+      if (section.has("pressure")) {
+        const auto pressure = section.value_or_expression("pressure", {"t"});
+        check_time(section, pressure, section.key_path("pressure"));
+        condition.pressure = to_time_function(pressure);
+      }
     } else if (type == "free") {
       condition.kind = BoundaryKind::free;
     } else if (type == "velocity") {

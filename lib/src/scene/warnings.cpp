@@ -298,12 +298,28 @@ VelocityConflict shared_point_velocities(const Problem& problem) {
   return conflict;
 }
 
+// (x, y) inside zone z (the crossing-number test).
+bool zone_contains(const Mesh& mesh, Index z, double x, double y) {
+  bool inside = false;
+  const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
+  for (Index c = begin; c < end; ++c) {
+    const Index a = mesh.corner_point[c], b = mesh.corner_point[c + 1 < end ? c + 1 : begin];
+    if ((mesh.y[a] > y) != (mesh.y[b] > y) &&
+        x < mesh.x[a] + (y - mesh.y[a]) * (mesh.x[b] - mesh.x[a]) / (mesh.y[b] - mesh.y[a]))
+      inside = !inside;
+  }
+  return inside;
+}
+
 // A deposit whose point lies outside the mesh by more than the zones there are wide (and, for
 // a Gaussian, three radii): its energy would land in the zones around the nearest point.
 void check_deposits(const Problem& problem, const Locator& key) {
   const Mesh& mesh = problem.mesh;
   for (std::size_t k = 0; k < problem.deposits.size(); ++k) {
     const EnergyDeposit& deposit = problem.deposits[k];
+    bool inside = false;
+    for (Index z = 0; z < mesh.num_zones() && !inside; ++z) inside = zone_contains(mesh, z, deposit.x, deposit.y);
+    if (inside) continue;
     Index nearest = 0;
     double best = std::numeric_limits<double>::infinity();
     for (Index p = 0; p < mesh.num_points(); ++p) {

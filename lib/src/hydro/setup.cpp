@@ -426,6 +426,13 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
   allocate_state(*this, *this, m);
 
   set_initial_zones(regions);
+  // Transmitting boundaries: the far-field pressure of each edge, its zone's EOS pressure at
+  // t = 0 from the region's set-up, before any deposit (a distributed part, set up without the
+  // deposits, agrees).
+  for (PressureEdge& edge : pressure_edges)
+    if (edge.zone >= 0)
+      edge.ambient =
+          eos_pressure(problem.materials[regions.material[m.zone_region[edge.zone]]].eos, rho[edge.zone], e[edge.zone]);
   check_point_masses();
   deposit_energy();
   set_initial_velocities();
@@ -443,9 +450,6 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
   // Constrained points carry their prescribed velocity from t = 0 (no impulse in step one).
   apply_constraints(*this, vx, vy, 0.0);
   recompute_state();
-  // Transmitting boundaries: the far-field pressure of each edge, its zone's at t = 0.
-  for (PressureEdge& edge : pressure_edges)
-    if (edge.zone >= 0) edge.ambient = p[edge.zone];
   energy_initial = kinetic_energy() + internal_energy();
   digest = setup_digest(*this);
 #ifdef __GLIBC__

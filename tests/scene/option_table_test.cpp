@@ -23,8 +23,9 @@ namespace {
 
 namespace toml = stagger::testing::toml;
 
-// Every kind of material (the gas with strength, so that its options are read too) and a deposit.
-const std::string small_scene = toml::time("0.1") + toml::rectangle("[0.0, 1.0]", "[0.0, 0.1]", 10, 2) +
+// Every kind of material (the gas with strength, so that its options are read too) and a deposit;
+// the mesh holds the deposit's point moved by 1 (a deposit outside the mesh is refused).
+const std::string small_scene = toml::time("0.1") + toml::rectangle("[0.0, 1.0]", "[0.0, 1.0]", 10, 2) +
                                 toml::ideal_gas() + "[material.strength]\nshear_modulus = 2.0\nyield_stress = 3.0\n" +
                                 toml::copper() + R"([[material]]
 name = "explosive"

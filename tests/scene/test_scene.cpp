@@ -414,4 +414,125 @@ TEST(Scenes, SodHasTheVerificationSetUp) {
   EXPECT_DOUBLE_EQ(scene.problem.regions[0].density(0.75, 0.05), 0.125);
 }
 
+// rz scenes: `stagger check` prints the masses per radian (the run's), and the whole 2 pi:
+// rho = 1 on [0, 1] x [0, 0.1] is 0.1 / 2 = 0.05 per radian (it printed the planar 0.1).
+TEST_F(SceneFile, CheckPrintsRzMassesPerRadian) {
+  const std::string rz = stagger::describe(stagger::load_scene(write(base_scene + "[numerics]\ngeometry = \"rz\"\n")));
+  EXPECT_CONTAINS(rz, "mass ~ 0.05 per radian (0.314159 in the full 2 pi)");
+  const std::string planar = stagger::describe(stagger::load_scene(write(base_scene)));
+  EXPECT_CONTAINS(planar, "mass ~ 0.1, pressure given");
+}
+
+// [ale] keys the mode never reads are warned, naming the key and why (docs/scenes.md "Warnings").
+TEST_F(SceneFile, AleKeysTheModeIgnoresGetAWarning) {
+  const auto warnings_of = [&](const std::string& ale) {
+    std::string all;
+    for (const std::string& w : stagger::load_scene(write(base_scene + "[ale]\n" + ale)).warnings) all += w + "\n";
+    return all;
+  };
+  EXPECT_CONTAINS(warnings_of("relaxation = 0.3\n"),
+                  "key 'ale.relaxation': is ignored: [ale] has no mode, so the run is Lagrangian");
+  EXPECT_CONTAINS(warnings_of("mode = \"lagrangian\"\nremap_every = 5\n"),
+                  "key 'ale.remap_every': is ignored: mode = \"lagrangian\" never rezones or remaps");
+  const std::string eulerian =
+      warnings_of("mode = \"eulerian\"\nquality_trigger = 0.3\nmax_move = 0.2\nlimiter = \"none\"\n");
+  EXPECT_CONTAINS(eulerian, "key 'ale.quality_trigger': is ignored: mode = \"eulerian\" remaps after every cycle");
+  EXPECT_CONTAINS(eulerian, "key 'ale.max_move': is ignored: mode = \"eulerian\" returns to the initial mesh");
+  EXPECT_EQ(eulerian.find("ale.limiter"), std::string::npos) << eulerian;  // read by every remap
+  EXPECT_CONTAINS(warnings_of("mode = \"ale\"\nsize_weight = 2\n"),
+                  "key 'ale.size_weight': is ignored: it weighs a term of rezone = \"reference_jacobian\" only");
+  EXPECT_EQ(warnings_of("mode = \"ale\"\nrelaxation = 0.3\nrezone = \"reference_jacobian\"\nsize_weight = 2\n"), "");
+}
+
+// Points shared by regions with different initial velocities take the first [[region]]'s: the
+// order of the blocks decides their momentum, which is warned (0.9 % of the kinetic energy in
+// the finding); the same velocity on both sides is not.
+TEST_F(SceneFile, SharedPointsOfRegionsWithDifferentVelocitiesGetAWarning) {
+  const auto scene = [&](const std::string& air_velocity) {
+    return toml::time("0.1") + "[mesh]\nfile = \"" + STAGGER_SOURCE_DIR +
+           "/geometries/water_air.geo\"\nquads_only = true\n[mesh.parameters]\nn_water = 7\nn_air = 3\nn_y = 1\n" +
+           toml::ideal_gas() +
+           "[[region]]\nname = \"water\"\nmaterial = \"gas\"\ndensity = 1.0\npressure = 1.0\nvelocity = [0.1, 0.0]\n"
+           "[[region]]\nname = \"air\"\nmaterial = \"gas\"\ndensity = 1.0\npressure = 1.0\nvelocity = " +
+           air_velocity + "\n" + toml::walls();
+  };
+  const stagger::Scene differing = stagger::load_scene(write(scene("[0.0, 0.0]")));
+  ASSERT_EQ(differing.warnings.size(), 1u);
+  EXPECT_CONTAINS(differing.warnings[0],
+                  "key 'region[1].velocity': 2 point(s) shared with region 'water' (region[0]) "
+                  "get different initial velocities");
+  EXPECT_CONTAINS(differing.warnings[0], "up to |dv| = 0.1); the first [[region]] in the file wins there");
+  EXPECT_TRUE(stagger::load_scene(write(scene("[0.1, 0.0]"))).warnings.empty());
+}
+
+// type = "fixed": a clamped boundary (docs/scenes.md), read and described.
+TEST_F(SceneFile, FixedBoundaryIsReadAndDescribed) {
+  const stagger::Scene scene = stagger::load_scene(write(edit("type = \"wall\"", "type = \"fixed\"")));
+  ASSERT_EQ(scene.problem.boundaries.size(), 4u);
+  EXPECT_EQ(scene.problem.boundaries[0].kind, stagger::BoundaryKind::fixed);
+  EXPECT_CONTAINS(stagger::describe(scene), "left (2 edges): fixed (v = 0, clamped)");
+}
+
+// A burn that lights no zone before time.end (lit after the end, or too slow to arrive)
+// never burns: warned, naming the key (docs/scenes.md "Warnings").
+TEST_F(SceneFile, ABurnLitAfterTheEndGetsAWarning) {
+  const auto warnings_of = [&](const std::string& burn) {
+    const std::string text = toml::time("0.5") + toml::rectangle("[0.0, 1.0]", "[0.0, 0.5]", 4, 2) +
+                             "[[material]]\nname = \"he\"\neos = \"jwl\"\nA = 8.545\nB = 0.205\nR1 = 4.6\nR2 = "
+                             "1.35\nomega = 0.25\nrho0 = 1.84\n[material.burn]\n" +
+                             burn + toml::region("he", "1.84", "1e-6") + toml::walls();
+    std::string all;
+    for (const std::string& w : stagger::load_scene(write(text)).warnings) all += w + "\n";
+    return all;
+  };
+  EXPECT_CONTAINS(warnings_of("detonation_speed = 0.88\npoints = [[0.0, 0.0]]\ntime_offset = 1.0\n"),
+                  "key 'material[0].burn.time_offset': no zone of material 'he' lights before time.end = 0.5");
+  EXPECT_CONTAINS(warnings_of("detonation_speed = 1e-3\npoints = [[-1.0, 0.0]]\n"),
+                  "key 'material[0].burn.detonation_speed': no zone of material 'he' lights before time.end");
+  EXPECT_EQ(warnings_of("detonation_speed = 0.88\npoints = [[0.0, 0.0]]\n"), "");
+}
+
+// Unit slips (docs/scenes.md "Warnings"): constants implausible for the units a scene states in
+// scene.units, and, whatever the units, a JWL A far from rho0 D^2 or a region density far from
+// its material's rho0.
+TEST_F(SceneFile, ConstantsImplausibleForTheSceneUnitsGetAWarning) {
+  const auto warnings_of = [&](const std::string& units, const std::string& he, const std::string& density) {
+    const std::string text =
+        "[scene]\nunits = \"" + units + "\"\n" + toml::time("0.5") + toml::rectangle("[0.0, 1.0]", "[0.0, 0.5]", 4, 2) +
+        "[[material]]\nname = \"he\"\neos = \"jwl\"\n" + he +
+        "R1 = 4.6\nR2 = 1.35\nomega = 0.25\n[material.burn]\ndetonation_speed = 0.88\npoints = [[0.0, 0.0]]\n" +
+        toml::region("he", density, "1e-6") + toml::walls();
+    std::string all;
+    for (const std::string& w : stagger::load_scene(write(text)).warnings) all += w + "\n";
+    return all;
+  };
+  const std::string mbar = "A = 8.545\nB = 0.205\nrho0 = 1.84\n";
+  EXPECT_EQ(warnings_of("cm, g, us, Mbar", mbar, "1.84"), "");
+  const std::string pascal = warnings_of("cm, g, us, Mbar", "A = 8.545e11\nB = 2.05e10\nrho0 = 1.84\n", "1.84");
+  EXPECT_CONTAINS(pascal,
+                  "key 'material[0].A': 8.545e+11 is implausible for a JWL constant in the scene's units "
+                  "(scene.units = \"cm, g, us, Mbar\": 1e-06 to 100 Mbar)");
+  EXPECT_CONTAINS(pascal, "key 'material[0].B': 2.05e+10 is implausible");
+  // Without stated units: A against rho0 D^2 of the burn.
+  EXPECT_CONTAINS(warnings_of("", "A = 8.545e11\nB = 0.205\nrho0 = 1.84\n", "1.84"),
+                  "key 'material[0].A': 8.545e+11 is 5.99");
+  // An SI scene with the density in g/cm^3 (rho0 too), and a region density rho0 / 1000.
+  EXPECT_CONTAINS(warnings_of("SI (m, kg, s, Pa)", "A = 8.545e11\nB = 2.05e10\nrho0 = 1.84\n", "1.84"),
+                  "key 'material[0].rho0': 1.84 is implausible for the density of a condensed material");
+  EXPECT_CONTAINS(warnings_of("cm, g, us, Mbar", "A = 8.545\nB = 0.205\nrho0 = 1.84\n", "0.00184"),
+                  "key 'region[0].density': 0.00184 at (0.125, 0.125) is 0.001 times the rho0 = 1.84");
+}
+
+// type = "transmitting": the far-field pressure is the adjacent zone's at t = 0, or `pressure`.
+TEST_F(SceneFile, TransmittingBoundaryIsReadAndDescribed) {
+  const stagger::Scene initial = stagger::load_scene(write(edit("type = \"wall\"", "type = \"transmitting\"")));
+  EXPECT_EQ(initial.problem.boundaries[0].kind, stagger::BoundaryKind::transmitting);
+  EXPECT_TRUE(initial.problem.boundaries[0].far_field_from_initial_state);
+  EXPECT_CONTAINS(stagger::describe(initial), "left (2 edges): transmitting (p = p0 + rho c u.n)");
+  const stagger::Scene given =
+      stagger::load_scene(write(edit("type = \"wall\"", "type = \"transmitting\"\npressure = \"1 + t\"")));
+  EXPECT_FALSE(given.problem.boundaries[0].far_field_from_initial_state);
+  EXPECT_DOUBLE_EQ(given.problem.boundaries[0].pressure(0.5), 1.5);
+}
+
 }  // namespace

@@ -8,9 +8,12 @@
 #include <filesystem>
 #include <string>
 
+#include "stagger/error.hpp"
 #include "stagger/run.hpp"
 #include "stagger/scene.hpp"
+#include "stagger/simulation.hpp"
 #include "support/files.hpp"
+#include "support/gas_problem.hpp"
 #include "support/run_scene.hpp"
 #include "support/scene_toml.hpp"
 
@@ -86,6 +89,46 @@ TEST(WallPass, SlidingAlongTheWallPastItsEndIsNotACrossing) {
   ASSERT_TRUE(fold.result.completed) << fold.result.message;
   EXPECT_EQ(fold.lowest_y, 0.0);
   fs::remove_all(fold.out.parent_path());
+}
+
+// A wall is a body beyond its open ends (the ray), but not where the mesh's own boundary goes
+// on along the wall's line: a box whose bottom is a wall for x < 0.5 and free for x > 0.5.
+// The gas pushes the free half down through y = 0; the wall's ray over the free half used to
+// call that "through the wall" and stop the run. Its ray there is dropped: the run completes
+// and the free half moves below y = 0, while the wall half stays on it.
+TEST(WallPass, AWallIsNotExtendedOverAFreeBoundaryOnItsLine) {
+  Problem p = testing::gas_problem(testing::rectangle_mesh(1.0, 1.0, 8, 8), 1.4, 0.1);
+  p.regions.push_back(testing::uniform_region(1.0, 10.0));
+  // Split "bottom" at x = 0.5 into "bottom" (the wall) and "bottom_free".
+  Mesh& mesh = p.mesh;
+  BoundaryTag& bottom = mesh.tags[mesh.tag_index("bottom")];
+  BoundaryTag free_part{"bottom_free", {}, {}};
+  std::vector<std::array<Index, 2>> wall_edges;
+  for (const auto& e : bottom.edges) (mesh.x[e[0]] + mesh.x[e[1]] > 1.0 ? free_part.edges : wall_edges).push_back(e);
+  const auto points_of = [](const std::vector<std::array<Index, 2>>& edges) {
+    std::vector<Index> points;
+    for (const auto& e : edges) points.insert(points.end(), {e[0], e[1]});
+    std::sort(points.begin(), points.end());
+    points.erase(std::unique(points.begin(), points.end()), points.end());
+    return points;
+  };
+  bottom.edges = wall_edges;
+  bottom.points = points_of(wall_edges);
+  free_part.points = points_of(free_part.edges);
+  mesh.tags.push_back(free_part);
+  testing::walls(p, {"bottom", "left"});
+  testing::boundaries(p, {"bottom_free", "right", "top"}, BoundaryKind::free);
+  Simulation sim(std::move(p));
+  ASSERT_NO_THROW(sim.advance_to(0.1));
+  double lowest_free = 0, lowest_wall = 0;
+  for (Index q = 0; q < static_cast<Index>(sim.y().size()); ++q) {
+    if (sim.problem().mesh.y[q] != 0) continue;
+    (sim.problem().mesh.x[q] > 0.5 ? lowest_free : lowest_wall) =
+        std::min(sim.problem().mesh.x[q] > 0.5 ? lowest_free : lowest_wall, sim.y()[q]);
+  }
+  EXPECT_LT(lowest_free, -1e-3);
+  EXPECT_EQ(lowest_wall, 0.0);
+  EXPECT_LT(std::abs(sim.energy().relative_error), 1e-12);
 }
 
 }  // namespace stagger

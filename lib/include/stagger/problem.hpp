@@ -55,6 +55,10 @@ enum class BoundaryKind {
   free,      ///< traction-free
   pressure,  ///< applied pressure p(t) on the boundary edges
   periodic,  ///< paired with `partner`; points matched by translation
+  fixed,     ///< clamped: v = 0, both components (no tangential slip); its work is zero
+  /// non-reflecting (acoustic impedance): the pressure p0 + rho c u.n of the zone beside each
+  /// edge, u.n its outward normal velocity; its work is boundary work
+  transmitting,
 };
 
 /// A boundary condition on the points and edges of one mesh tag (a physical curve).
@@ -65,6 +69,8 @@ struct BoundaryCondition {
   TimeFunction velocity_x = constant_in_time(0.0), velocity_y = constant_in_time(0.0);
   TimeFunction pressure = constant_in_time(0.0);  ///< applied pressure p(t) (kind pressure)
   std::string partner;                            ///< periodic: the other tag
+  /// transmitting: the far-field pressure p0 is the adjacent zone's at t = 0 (true), or pressure(t)
+  bool far_field_from_initial_state = true;
 };
 
 /// Artificial viscosity: zone-centred bulk q, the edge-centred viscosity with limiter, or the

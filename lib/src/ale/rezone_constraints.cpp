@@ -188,19 +188,20 @@ std::vector<int> boundary_edge_counts(const Mesh& mesh, std::vector<std::array<I
 }
 
 // Tags: the number of tags on each point (saturating at 255); the points of periodic tags are
-// marked fixed, so that partner points stay matched.
+// marked fixed, so that partner points stay matched, and those of clamped (type "fixed") tags,
+// which the material holds in place.
 std::vector<std::uint8_t> tag_counts(const Mesh& mesh, std::span<const BoundaryCondition> boundaries,
                                      std::vector<std::uint8_t>& fixed) {
   std::vector<std::uint8_t> tag_count(mesh.num_points(), 0);
   for (const BoundaryTag& tag : mesh.tags) {
-    bool periodic = false;
+    bool held = false;  // periodic or clamped
     for (const BoundaryCondition& bc : boundaries)
-      if (bc.tag == tag.name && bc.kind == BoundaryKind::periodic) periodic = true;
+      if (bc.tag == tag.name && (bc.kind == BoundaryKind::periodic || bc.kind == BoundaryKind::fixed)) held = true;
     for (const BoundaryCondition& bc : boundaries)
-      if (bc.partner == tag.name && bc.kind == BoundaryKind::periodic) periodic = true;
+      if (bc.partner == tag.name && bc.kind == BoundaryKind::periodic) held = true;
     for (const Index p : tag.points) {
       if (tag_count[p] < 255) ++tag_count[p];
-      if (periodic) fixed[p] = 1;
+      if (held) fixed[p] = 1;
     }
   }
   return tag_count;

@@ -46,6 +46,16 @@ void add_candidate(std::vector<Candidate>& list, Candidate c) {
   list.push_back(c);
 }
 
+// The zone whose side runs a -> b (the boundary edge's zone, in its CCW order).
+Index edge_zone(const Mesh& mesh, Index a, Index b) {
+  for (Index j = mesh.point_corner_begin[a]; j < mesh.point_corner_begin[a + 1]; ++j) {
+    const Index c = mesh.point_corners[j], z = mesh.corner_zone[c];
+    const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
+    if (mesh.corner_point[c + 1 < end ? c + 1 : begin] == b) return z;
+  }
+  throw Error("boundary edge " + std::to_string(a) + "-" + std::to_string(b) + " is the side of no zone");
+}
+
 // A wall edge a -> b of the initial mesh (CCW zone order: the domain is on its left).
 WallEdge wall_edge(const Mesh& mesh, Index a, Index b, int bc) {
   WallEdge w;
@@ -60,16 +70,47 @@ WallEdge wall_edge(const Mesh& mesh, Index a, Index b, int bc) {
   return w;
 }
 
+// The points q for which the side p-q lies on the mesh's boundary (in one zone only).
+std::vector<Index> boundary_neighbours(const Mesh& m, Index p) {
+  std::map<Index, int> sides;
+  for (Index j = m.point_corner_begin[p]; j < m.point_corner_begin[p + 1]; ++j) {
+    const Index c = m.point_corners[j], z = m.corner_zone[c], b = m.zone_corner_begin[z];
+    const Index n = m.zone_corner_begin[z + 1] - b, k = c - b;
+    ++sides[m.corner_point[b + (k + 1) % n]];
+    ++sides[m.corner_point[b + (k + n - 1) % n]];
+  }
+  std::vector<Index> out;
+  for (const auto& [q, count] : sides)
+    if (count == 1) out.push_back(q);
+  return out;
+}
+
+// The mesh's own boundary goes on from the open end `end` of a wall along the ray's direction
+// (tx, ty), within the 30 degrees of a curved wall: the wall stops there, no ray (a ray would
+// call the material of that boundary moving out "through the wall").
+bool boundary_continues_the_wall(const Mesh& m, Index end, Index other, double tx, double ty) {
+  for (Index q : boundary_neighbours(m, end)) {
+    if (q == other) continue;
+    const double dx = m.x[q] - m.x[end], dy = m.y[q] - m.y[end];
+    if (dx * tx + dy * ty > std::cos(M_PI / 6) * std::hypot(dx, dy)) return true;
+  }
+  return false;
+}
+
 // Rays at the open ends of the walls and the grid over the wall edges (docs/algorithm.md §10).
 void setup_wall_check(Simulation::Impl& s) {
   std::vector<WallEdge>& edges = s.wall_edges;
   if (edges.empty()) return;
-  // An end point of one wall edge only is an open end: the wall goes on along that edge.
+  // An end point of one wall edge only is an open end: the wall goes on along that edge,
+  // unless the mesh's boundary itself goes on along its line there.
   std::map<Index, int> uses;
   for (const WallEdge& w : edges) ++uses[w.a], ++uses[w.b];
   for (const WallEdge& w : edges) {
     for (const bool at_a : {true, false}) {
       if (uses[at_a ? w.a : w.b] != 1) continue;
+      if (at_a ? boundary_continues_the_wall(s.mesh(), w.a, w.b, -w.tx, -w.ty)
+               : boundary_continues_the_wall(s.mesh(), w.b, w.a, w.tx, w.ty))
+        continue;
       WallEdge ray = w;
       ray.b = -1;
       if (at_a) {
@@ -310,6 +351,7 @@ void setup_boundaries(Simulation::Impl& s) {
   std::vector<Index> parent(mesh.num_points());
   std::iota(parent.begin(), parent.end(), 0);
   bool any_periodic = false;
+  std::vector<Index> fixed_points;
 
   for (std::size_t b = 0; b < bcs.size(); ++b) {
     const BoundaryCondition& bc = bcs[b];
@@ -317,8 +359,15 @@ void setup_boundaries(Simulation::Impl& s) {
     switch (bc.kind) {
       case BoundaryKind::free:
         break;
+      case BoundaryKind::fixed:
+        fixed_points.insert(fixed_points.end(), tag.points.begin(), tag.points.end());
+        break;
       case BoundaryKind::pressure:
         for (const auto& edge : tag.edges) s.pressure_edges.push_back({edge[0], edge[1], static_cast<int>(b)});
+        break;
+      case BoundaryKind::transmitting:
+        for (const auto& edge : tag.edges)
+          s.pressure_edges.push_back({edge[0], edge[1], static_cast<int>(b), edge_zone(mesh, edge[0], edge[1])});
         break;
       case BoundaryKind::wall:
       case BoundaryKind::velocity: {
@@ -374,6 +423,8 @@ void setup_boundaries(Simulation::Impl& s) {
   if (s.rz)
     for (Index p = 0; p < mesh.num_points(); ++p)
       if (mesh.x[p] == 0) add_candidate(candidates[p], {-1.0, 0.0, -1});
+  // A fixed (clamped) point: v = 0, whatever else holds there (two normals, both g = 0).
+  for (Index p : fixed_points) candidates[p] = {{1.0, 0.0, -1}, {0.0, 1.0, -1}};
 
   for (auto& [point, list] : candidates) {
     PointConstraint c;
@@ -415,6 +466,12 @@ void apply_constraints(const Simulation::Impl& s, std::span<double> vx, std::spa
       mass += s.point_mass[p];
       px += s.point_mass[p] * vx[p];
       py += s.point_mass[p] * vy[p];
+    }
+    if (!(mass > 0)) {
+      // rz: the copies of an axis point (an axially periodic cylinder) carry no mass (r = 0);
+      // each moved by its own corners' acceleration, they share the mean (was 0 / 0 = NaN).
+      mass = static_cast<double>(group.size()), px = py = 0;
+      for (Index p : group) px += vx[p], py += vy[p];
     }
     for (Index p : group) {
       vx[p] = px / mass;
@@ -486,11 +543,19 @@ void pressure_forces_in(const Simulation::Impl& s, std::span<const double> x, st
   std::fill(fx.begin(), fx.end(), 0.0);
   std::fill(fy.begin(), fy.end(), 0.0);
   for (const auto& edge : s.pressure_edges) {
-    const double p = s.problem.boundaries[edge.bc].pressure(t);
+    const BoundaryCondition& bc = s.problem.boundaries[edge.bc];
+    double p = edge.zone >= 0 && bc.far_field_from_initial_state ? edge.ambient : bc.pressure(t);
+    if (edge.zone >= 0) {
+      // Transmitting: p0 + rho c u.n, u.n the edge's outward normal velocity at t^n (the
+      // impedance of the zone beside it: an outgoing plane wave leaves without reflection).
+      const double nx = y[edge.b] - y[edge.a], ny = x[edge.a] - x[edge.b], len = std::hypot(nx, ny);
+      const double un = 0.5 * ((s.vx[edge.a] + s.vx[edge.b]) * nx + (s.vy[edge.a] + s.vy[edge.b]) * ny) / len;
+      p += s.rho[edge.zone] * s.c[edge.zone] * un;
+    }
     if (!std::isfinite(p)) {
       std::ostringstream msg;
-      msg << "boundary '" << s.problem.boundaries[edge.bc].tag << "': the applied pressure is not finite at t = " << t
-          << " (" << p << "): fix its expression";
+      msg << "boundary '" << bc.tag << "': the applied pressure is not finite at t = " << t << " (" << p
+          << "): fix its expression";
       throw Error(msg.str());
     }
     const double dx = x[edge.b] - x[edge.a], dy = y[edge.b] - y[edge.a];

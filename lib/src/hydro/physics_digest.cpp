@@ -79,6 +79,10 @@ const char* boundary_type(BoundaryKind kind) {
       return "pressure";
     case BoundaryKind::periodic:
       return "periodic";
+    case BoundaryKind::transmitting:
+      return "transmitting";
+    case BoundaryKind::fixed:
+      return "fixed";
   }
   return "?";
 }
@@ -266,7 +270,8 @@ std::vector<DigestEntry> sampled_digest(const Simulation::Impl& s, double t_refe
         h.value(bc.velocity_x(sample_time(k))), h.value(bc.velocity_y(sample_time(k)));
       d.hashed("boundaries", bc.tag + ".velocity", h);
     }
-    if (bc.kind == BoundaryKind::pressure) {
+    if (bc.kind == BoundaryKind::pressure ||
+        (bc.kind == BoundaryKind::transmitting && !bc.far_field_from_initial_state)) {
       Hasher h;
       for (int k = 0; k <= kSamples; ++k) h.value(bc.pressure(sample_time(k)));
       d.hashed("boundaries", bc.tag + ".pressure", h);

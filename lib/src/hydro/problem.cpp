@@ -5,6 +5,7 @@
 #include <set>
 #include <sstream>
 
+#include "hydro/boundary_checks.hpp"
 #include "stagger/error.hpp"
 #include "stagger/option_table.hpp"
 #include "strength/strength_models.hpp"
@@ -40,7 +41,8 @@ void validate_material(const Material& m) {
   if (const auto* sg = std::get_if<StiffenedGas>(&m.eos)) stiffened_gas_option_table().validate(*sg, where);
   if (m.strength) validate_strength_model(*m.strength, where + "strength.");
   if (m.burn) {
-    require(m.burn->detonation_speed > 0, where + "burn detonation_speed must be > 0");
+    require(m.burn->detonation_speed > 0 && std::isnormal(m.burn->detonation_speed),
+            where + "burn detonation_speed must be > 0 and a normal number (not denormal)");
     require(!m.burn->points.empty() || m.burn->plane.has_value(),
             where + "burn needs detonation points or a detonation plane");
     require(std::holds_alternative<Jwl>(m.eos), where + "burn needs a JWL equation of state");
@@ -99,6 +101,7 @@ void Problem::validate() const {
               "periodic boundary '" + b.tag + "': partner tag '" + b.partner + "' is not in the mesh");
     }
   }
+  if (const auto wrong = boundary_geometry_problem(*this)) throw Error(wrong->message);
 }
 
 }  // namespace stagger

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "hydro/boundary.hpp"
+#include "hydro/boundary_checks.hpp"
 #include "hydro/kernels/geometry.hpp"
 #include "hydro/kernels/heat_flux.hpp"
 #include "hydro/kernels/subzonal_pressure.hpp"
@@ -52,8 +53,12 @@ void setup_edge_continuation(Simulation::Impl& s) {
   std::map<std::pair<Index, Index>, float> boundary_ratio;
   std::set<std::pair<Index, Index>> mirror_edges;  // walls, symmetry planes, pistons
   for (const auto& bc : s.problem.boundaries) {
-    const float r = (bc.kind == BoundaryKind::free || bc.kind == BoundaryKind::pressure) ? 0.f : 1.f;
-    const bool mirror = bc.kind == BoundaryKind::wall || bc.kind == BoundaryKind::velocity;
+    const float r =
+        (bc.kind == BoundaryKind::free || bc.kind == BoundaryKind::pressure || bc.kind == BoundaryKind::transmitting)
+            ? 0.f
+            : 1.f;
+    const bool mirror =
+        bc.kind == BoundaryKind::wall || bc.kind == BoundaryKind::velocity || bc.kind == BoundaryKind::fixed;
     for (const auto& e : m.tags[m.tag_index(bc.tag)].edges) {
       boundary_ratio[{e[0], e[1]}] = r;
       if (mirror) mirror_edges.insert({e[0], e[1]});
@@ -109,9 +114,7 @@ void setup_heat_neighbours(Simulation::Impl& s) {
 // rz (docs/algorithm.md §19): x is the radius. Points within round-off of the axis (a polar
 // mesh's cos 90 degrees) are put on it; a point at x < 0 is an error.
 void setup_axis(Mesh& m) {
-  double extent = 0;
-  for (Index p = 0; p < m.num_points(); ++p) extent = std::max({extent, std::abs(m.x[p]), std::abs(m.y[p])});
-  const double tolerance = 1e-12 * extent;
+  const double tolerance = axis_tolerance(m);
   for (Index p = 0; p < m.num_points(); ++p) {
     if (std::abs(m.x[p]) <= tolerance) {
       m.x[p] = 0;
@@ -423,6 +426,13 @@ Simulation::Impl::Impl(Problem prob) : problem(std::move(prob)) {
   allocate_state(*this, *this, m);
 
   set_initial_zones(regions);
+  // Transmitting boundaries: the far-field pressure of each edge, its zone's EOS pressure at
+  // t = 0 from the region's set-up, before any deposit (a distributed part, set up without the
+  // deposits, agrees).
+  for (PressureEdge& edge : pressure_edges)
+    if (edge.zone >= 0)
+      edge.ambient =
+          eos_pressure(problem.materials[regions.material[m.zone_region[edge.zone]]].eos, rho[edge.zone], e[edge.zone]);
   check_point_masses();
   deposit_energy();
   set_initial_velocities();

@@ -36,7 +36,9 @@ struct PointConstraint {
 // Applied pressure on one boundary edge (a -> b, outward normal (dy, -dx)).
 struct PressureEdge {
   Index a = 0, b = 0;
-  int bc = 0;  // index into Problem::boundaries
+  int bc = 0;          // index into Problem::boundaries
+  Index zone = -1;     // transmitting: the zone beside the edge (-1: an applied pressure)
+  double ambient = 0;  // transmitting: its far-field pressure, the zone's at t = 0
 };
 
 std::string describe_zone(const Simulation::Impl& s, Index z);

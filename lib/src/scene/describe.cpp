@@ -22,6 +22,10 @@ const char* kind_name(BoundaryKind kind) {
       return "applied pressure";
     case BoundaryKind::periodic:
       return "periodic";
+    case BoundaryKind::transmitting:
+      return "transmitting (p = p0 + rho c u.n)";
+    case BoundaryKind::fixed:
+      return "fixed (v = 0, clamped)";
   }
   return "?";
 }
@@ -57,6 +61,18 @@ std::string echo_lines(const std::string& echo) {
     start = comma == std::string::npos ? echo.size() : comma + 2;
   }
   return out + "\n";
+}
+
+// The volume per radian of zone z in rz: the integral of x dA over it (Pappus: the area
+// times the radius of its centroid).
+double volume_per_radian(const Mesh& mesh, Index z) {
+  double sum = 0;
+  const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
+  for (Index c = begin; c < end; ++c) {
+    const Index a = mesh.corner_point[c], b = mesh.corner_point[c + 1 < end ? c + 1 : begin];
+    sum += (mesh.x[a] + mesh.x[b]) * (mesh.x[a] * mesh.y[b] - mesh.x[b] * mesh.y[a]);
+  }
+  return sum / 6;
 }
 
 }  // namespace
@@ -95,14 +111,17 @@ std::string describe(const Scene& scene) {
   for (const auto& region : problem.regions) {
     const int r = mesh.region_index(region.region);
     const Index zones = r >= 0 ? mesh.region_zone_begin[r + 1] - mesh.region_zone_begin[r] : 0;
+    // rz: per radian, as the run's masses and energies (docs/algorithm.md §19), and the whole.
+    const bool rz = options.geometry == CoordinateSystem::rz;
     double mass = 0;
     if (r >= 0)
       for (Index z = mesh.region_zone_begin[r]; z < mesh.region_zone_begin[r + 1]; ++z) {
         const auto centre = zone_centre(mesh, z);
-        mass += region.density(centre[0], centre[1]) * zone_area(mesh, z);
+        mass += region.density(centre[0], centre[1]) * (rz ? volume_per_radian(mesh, z) : zone_area(mesh, z));
       }
-    out << "  " << region.region << ": material " << region.material << ", " << zones << " zones, mass ~ " << mass
-        << (region.pressure ? ", pressure given" : ", specific internal energy given")
+    out << "  " << region.region << ": material " << region.material << ", " << zones << " zones, mass ~ " << mass;
+    if (rz) out << " per radian (" << 2 * M_PI * mass << " in the full 2 pi)";
+    out << (region.pressure ? ", pressure given" : ", specific internal energy given")
         << (region.stress_xx ? ", initial stress" : "") << "\n";
   }
 

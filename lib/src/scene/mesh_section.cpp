@@ -21,6 +21,10 @@ namespace {
 constexpr long kMaxCount = 10'000'000;
 constexpr long kMaxZones = 100'000'000;
 constexpr double kMaxRefine = 1000;
+// .geo parameters (docs/mesh.md): a zone count listed in mesh.refined, after refine, and any
+// value at all (a length or a count; gmsh's doubles cannot separate points at 1e15).
+constexpr double kMaxGeoCount = static_cast<double>(kMaxCount);
+constexpr double kMaxGeoParameter = 1e15;
 
 std::string join(const std::vector<std::string>& names) {
   std::string list;
@@ -192,7 +196,20 @@ Mesh read_mesh_section(Section& section, const std::string& scene_file, std::vec
         const std::string name(key.str());
         parameter_names.push_back(name);
         double value = parameters->number(name);
-        if (std::find(refined.begin(), refined.end(), name) != refined.end()) value *= refine;
+        // A .geo parameter is a length or a count: 1e308 or a negative count makes no sense.
+        if (!(std::abs(value) <= kMaxGeoParameter))
+          parameters->fail(name,
+                           "must be within +-" + show(kMaxGeoParameter) + ", got " + show(value) +
+                               ": no length or count of a mesh is that large",
+                           "check the value and its units");
+        if (std::find(refined.begin(), refined.end(), name) != refined.end()) {
+          value *= refine;
+          if (!(value >= 1 && value <= kMaxGeoCount))
+            parameters->fail(name,
+                             "is a zone count (listed in mesh.refined): must be in [1, " + show(kMaxGeoCount) +
+                                 "], got " + show(value) + (refine != 1 ? " after mesh.refine = " + show(refine) : ""),
+                             "give a positive count");
+        }
         options.parameters.emplace_back(name, value);
       }
       parameters->finish();

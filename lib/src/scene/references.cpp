@@ -92,6 +92,12 @@ AccuracyParameters read_accuracy_parameters(Section& section, const Problem& pro
 SourceContext read_sources_section(Section& section, Problem& problem) {
   SourceContext context;
   context.kind = section.choice("kind", {"taylor_green", "accuracy"});
+  if (problem.options.geometry == CoordinateSystem::rz)
+    section.fail("kind",
+                 "the \"" + context.kind +
+                     "\" source terms are derived for a planar flow and numerics.geometry = \"rz\" (x is the "
+                     "radius there)",
+                 "run the scene with geometry = \"planar\"");
   if (context.kind == "taylor_green") {
     // The energy source of verify.hpp is derived for gamma = 5/3.
     for (const auto& material : problem.materials) {
@@ -115,6 +121,16 @@ void read_verification_section(Section& section, const Problem& problem, const S
       section.choice("reference", {"shock_tube", "noh", "sedov", "saltzman", "taylor_green", "piston", "be_shell",
                                    "detonation", "accuracy", "taylor_bar"});
   setup.name = reference;
+  // The planar references measure a planar flow (a function of x, a periodic square); in rz, x
+  // is the radius and the flow is another one (docs/verification.md).
+  for (const char* planar : {"shock_tube", "saltzman", "taylor_green", "piston", "detonation", "accuracy"})
+    if (reference == planar && problem.options.geometry == CoordinateSystem::rz)
+      section.fail("reference",
+                   "\"" + reference +
+                       "\" is a planar solution and numerics.geometry = \"rz\" (x is the radius there): its errors "
+                       "would be meaningless",
+                   "run the scene with geometry = \"planar\", or use an rz reference (noh, sedov, be_shell, "
+                   "taylor_bar)");
   if (reference == "shock_tube") {
     ShockTubeReference parameters;
     parameters.left = read_gas_state(section, "left");

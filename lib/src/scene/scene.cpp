@@ -151,6 +151,11 @@ Material read_material(Section& section) {
     Burn burn;
     burn.detonation_speed = burn_section->number("detonation_speed");
     if (!(burn.detonation_speed > 0)) burn_section->fail("detonation_speed", "must be > 0");
+    if (!std::isnormal(burn.detonation_speed))
+      burn_section->fail("detonation_speed",
+                         "must be a normal number, got the denormal " + show(burn.detonation_speed) +
+                             ": the detonation would never travel",
+                         "check the value and its units");
     if (const toml::node* points = burn_section->find("points")) {
       const auto* array = points->as_array();
       if (array == nullptr)
@@ -310,9 +315,21 @@ void read_boundaries(Section& root, const Mesh& mesh, double t_end, Problem& pro
     }
     for (const auto& tag : tags) claim(section, tag_key, tag);
     BoundaryCondition condition;
-    const std::string type = section.choice("type", {"wall", "velocity", "free", "pressure", "periodic"});
+    const std::string type =
+        section.choice("type", {"wall", "velocity", "free", "pressure", "periodic", "fixed", "transmitting"});
     if (type == "wall") {
       condition.kind = BoundaryKind::wall;
+    } else if (type == "fixed") {
+      condition.kind = BoundaryKind::fixed;
+    } else if (type == "transmitting") {
+      condition.kind = BoundaryKind::transmitting;
+      // The far-field pressure: given, or the adjacent zone's at t = 0 (docs/scenes.md).
+      condition.far_field_from_initial_state = !section.has("pressure");
+      if (section.has("pressure")) {
+        const auto pressure = section.value_or_expression("pressure", {"t"});
+        check_time(section, pressure, section.key_path("pressure"));
+        condition.pressure = to_time_function(pressure);
+      }
     } else if (type == "free") {
       condition.kind = BoundaryKind::free;
     } else if (type == "velocity") {
@@ -439,6 +456,7 @@ Scene read_scene(const std::string& path, const std::vector<std::pair<std::strin
   root.finish();
   if (outline) return scene;  // no zones to validate or review: rank 0 did (docs/parallel.md)
 
+  check_boundary_geometry(document, scene);
   try {
     problem.validate();
   } catch (const Error& failure) {

@@ -3,11 +3,15 @@
 #include "warnings.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
+#include <optional>
 #include <sstream>
 
+#include "hydro/boundary_checks.hpp"
 #include "scene_internal.hpp"
 #include "stagger/error.hpp"
 #include "strength/strength_models.hpp"
@@ -211,7 +215,260 @@ Untagged untagged_boundary_edges(const Mesh& mesh) {
   return result;
 }
 
+// The [[boundary]] key that names `tag`: "boundary[i].tag", "boundary[i].tags" or
+// "boundary[i].partner"; "boundary" if none does.
+std::string boundary_key(const toml::table& document, const std::string& tag) {
+  const toml::array* sections = document["boundary"].as_array();
+  for (std::size_t i = 0; sections && i < sections->size(); ++i) {
+    const toml::table* section = sections->get(i)->as_table();
+    if (!section) continue;
+    const std::string path = "boundary[" + std::to_string(i) + "].";
+    if (section->get("tag") && section->get("tag")->value<std::string>() == tag) return path + "tag";
+    if (const toml::array* tags = section->get("tags") ? section->get("tags")->as_array() : nullptr)
+      for (const toml::node& name : *tags)
+        if (name.value<std::string>() == tag) return path + "tags";
+  }
+  for (std::size_t i = 0; sections && i < sections->size(); ++i) {
+    const toml::table* section = sections->get(i)->as_table();
+    if (section && section->get("partner") && section->get("partner")->value<std::string>() == tag)
+      return "boundary[" + std::to_string(i) + "].partner";
+  }
+  return "boundary";
+}
+
+// Why the chosen [ale] mode never reads `key` (empty if it does; docs/ale.md, "Modes").
+std::string dead_ale_key(const AleOptions& ale, bool mode_given, const std::string& key) {
+  if (key == "mode") return {};
+  if (ale.mode == AleMode::lagrangian)
+    return mode_given ? "is ignored: mode = \"lagrangian\" never rezones or remaps; set mode = \"ale\" (or "
+                        "\"eulerian\") or remove the key"
+                      : "is ignored: [ale] has no mode, so the run is Lagrangian (no rezone, no remap); add mode = "
+                        "\"ale\" (or \"eulerian\") or remove the key";
+  if (ale.mode == AleMode::eulerian && key != "limiter")
+    return key == "remap_every" || key == "quality_trigger"
+               ? "is ignored: mode = \"eulerian\" remaps after every cycle; it is read by mode = \"ale\" only"
+               : "is ignored: mode = \"eulerian\" returns to the initial mesh (no rezone); it is read by mode = "
+                 "\"ale\" only";
+  if (ale.mode == AleMode::ale && key == "size_weight" && ale.rezone != AleRezone::reference_jacobian)
+    return "is ignored: it weighs a term of rezone = \"reference_jacobian\" only";
+  return {};
+}
+
+// Points shared by regions whose initial velocities differ there: the first [[region]] in
+// the file gives them its velocity (set_initial_velocities). The warning names the later
+// region of the first such point, the count and the largest difference.
+struct VelocityConflict {
+  std::size_t count = 0, first_region = 0, later_region = 0;
+  double x = 0, y = 0, difference = 0;
+};
+
+VelocityConflict shared_point_velocities(const Problem& problem) {
+  const Mesh& mesh = problem.mesh;
+  const Index np = mesh.num_points();
+  std::vector<int> first(np, -1);
+  std::vector<double> ux(np, 0), uy(np, 0);
+  std::vector<char> counted(np, 0);
+  VelocityConflict conflict;
+  const auto velocity = [](const SpaceFunction& f, double x, double y) { return f ? f(x, y) : 0.0; };
+  for (std::size_t i = 0; i < problem.regions.size(); ++i) {
+    const RegionSetup& setup = problem.regions[i];
+    const int r = mesh.region_index(setup.region);
+    if (r < 0) continue;
+    for (Index z = mesh.region_zone_begin[r]; z < mesh.region_zone_begin[r + 1]; ++z)
+      for (Index c = mesh.zone_corner_begin[z]; c < mesh.zone_corner_begin[z + 1]; ++c) {
+        const Index p = mesh.corner_point[c];
+        if (first[p] < 0) {
+          first[p] = static_cast<int>(i);
+          ux[p] = velocity(setup.velocity_x, mesh.x[p], mesh.y[p]);
+          uy[p] = velocity(setup.velocity_y, mesh.x[p], mesh.y[p]);
+          continue;
+        }
+        if (first[p] == static_cast<int>(i) || counted[p]) continue;
+        const double vx = velocity(setup.velocity_x, mesh.x[p], mesh.y[p]);
+        const double vy = velocity(setup.velocity_y, mesh.x[p], mesh.y[p]);
+        const double d = std::hypot(vx - ux[p], vy - uy[p]);
+        if (!(d > 1e-12 * std::max(std::hypot(vx, vy), std::hypot(ux[p], uy[p])))) continue;
+        counted[p] = 1;
+        if (conflict.count++ == 0)
+          conflict.first_region = static_cast<std::size_t>(first[p]), conflict.later_region = i, conflict.x = mesh.x[p],
+          conflict.y = mesh.y[p];
+        conflict.difference = std::max(conflict.difference, d);
+      }
+  }
+  return conflict;
+}
+
+// (x, y) inside zone z (the crossing-number test).
+bool zone_contains(const Mesh& mesh, Index z, double x, double y) {
+  bool inside = false;
+  const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
+  for (Index c = begin; c < end; ++c) {
+    const Index a = mesh.corner_point[c], b = mesh.corner_point[c + 1 < end ? c + 1 : begin];
+    if ((mesh.y[a] > y) != (mesh.y[b] > y) &&
+        x < mesh.x[a] + (y - mesh.y[a]) * (mesh.x[b] - mesh.x[a]) / (mesh.y[b] - mesh.y[a]))
+      inside = !inside;
+  }
+  return inside;
+}
+
+// A deposit whose point lies outside the mesh by more than the zones there are wide (and, for
+// a Gaussian, three radii): its energy would land in the zones around the nearest point.
+void check_deposits(const Problem& problem, const Locator& key) {
+  const Mesh& mesh = problem.mesh;
+  for (std::size_t k = 0; k < problem.deposits.size(); ++k) {
+    const EnergyDeposit& deposit = problem.deposits[k];
+    bool inside = false;
+    for (Index z = 0; z < mesh.num_zones() && !inside; ++z) inside = zone_contains(mesh, z, deposit.x, deposit.y);
+    if (inside) continue;
+    Index nearest = 0;
+    double best = std::numeric_limits<double>::infinity();
+    for (Index p = 0; p < mesh.num_points(); ++p) {
+      const double d = std::hypot(mesh.x[p] - deposit.x, mesh.y[p] - deposit.y);
+      if (d < best) best = d, nearest = p;
+    }
+    double width = 0;
+    for (Index j = mesh.point_corner_begin[nearest]; j < mesh.point_corner_begin[nearest + 1]; ++j)
+      width = std::max(width, longest_chord(mesh, mesh.corner_zone[mesh.point_corners[j]]));
+    const double reach = width + 3 * deposit.radius;
+    if (best > reach)
+      throw Error(key.at("deposit[" + std::to_string(k) + "].x") + ": the deposit at " +
+                  point_text(deposit.x, deposit.y) + " is " + show(best) + " from the nearest mesh point " +
+                  std::to_string(nearest) + " " + point_text(mesh.x[nearest], mesh.y[nearest]) +
+                  ", more than the zones there are wide (" + show(width) + ")" +
+                  (deposit.radius > 0 ? " plus 3 radii" : "") +
+                  ": it lies outside the mesh and its energy would go into the zones nearest to it; check its "
+                  "coordinates (and their units)");
+  }
+}
+
+// The earliest lighting time of each burning material's zones (as the set-up computes it,
+// time_offset + distance / D): after time.end nothing burns.
+void warn_unlit_burns(const Problem& problem, const std::vector<ZoneState>& states,
+                      const std::function<void(const std::string&, const std::string&)>& warn) {
+  const Mesh& mesh = problem.mesh;
+  for (std::size_t m = 0; m < problem.materials.size(); ++m) {
+    if (!problem.materials[m].burn) continue;
+    const Burn& burn = *problem.materials[m].burn;
+    double earliest = std::numeric_limits<double>::infinity();
+    for (Index z = 0; z < mesh.num_zones(); ++z) {
+      if (states[z].material != static_cast<int>(m)) continue;
+      const double cx = states[z].centre_x, cy = states[z].centre_y;
+      double distance = std::numeric_limits<double>::infinity();
+      for (const auto& pt : burn.points) distance = std::min(distance, std::hypot(cx - pt[0], cy - pt[1]));
+      if (burn.plane) {
+        const auto& pl = *burn.plane;
+        distance = std::min(distance, std::abs((cx - pl[0]) * pl[2] + (cy - pl[1]) * pl[3]) / std::hypot(pl[2], pl[3]));
+      }
+      earliest = std::min(earliest, burn.time_offset + distance / burn.detonation_speed);
+    }
+    if (!(earliest > problem.t_end)) continue;  // also: no zone of the material
+    const std::string path = "material[" + std::to_string(m) + "].burn.";
+    warn(path + (burn.time_offset >= problem.t_end ? "time_offset" : "detonation_speed"),
+         "no zone of material '" + problem.materials[m].name + "' lights before time.end = " + show(problem.t_end) +
+             " (the first at t = " + show(earliest) + " = time_offset " + show(burn.time_offset) +
+             " + distance / detonation_speed " + show(burn.detonation_speed) +
+             "): nothing will burn; check time_offset, the detonation points and the units of the speed");
+  }
+}
+
+// The unit system a scene states in scene.units, by its words: "Mbar" (cm, g, us, Mbar) or
+// "SI" / "kg" / "Pa" (m, kg, s, Pa); anything else (dimensionless, none) is not checked.
+struct UnitSystem {
+  std::string text;  // scene.units as written
+  double density_lo = 0, density_hi = 0, speed_lo = 0, speed_hi = 0, pressure_lo = 0, pressure_hi = 0;
+  const char *density = "", *speed = "", *pressure = "", *slip = "";
+};
+
+std::optional<UnitSystem> stated_units(const toml::table& document) {
+  const std::optional<std::string> text = document["scene"]["units"].value<std::string>();
+  if (!text) return std::nullopt;
+  bool si = false, mbar = false;
+  std::string word;
+  for (const char c : *text + " ") {
+    if (std::isalnum(static_cast<unsigned char>(c))) {
+      word += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      continue;
+    }
+    si = si || word == "si" || word == "kg" || word == "pa";
+    mbar = mbar || word == "mbar";
+    word.clear();
+  }
+  // Condensed matter: densities 0.05 to 50 g/cm^3, sound speeds 0.01 to 2 cm/us, moduli and
+  // JWL constants 1e-6 to 100 Mbar (a decade or more beyond real materials each way).
+  if (mbar) return UnitSystem{*text, 0.05, 50, 0.01, 2, 1e-6, 100, "g/cm^3", "cm/us", "Mbar", "SI"};
+  if (si) return UnitSystem{*text, 50, 5e4, 100, 2e4, 1e5, 1e13, "kg/m^3", "m/s", "Pa", "g/cm^3, cm/us or Mbar"};
+  return std::nullopt;
+}
+
+// Densities and EOS constants implausible for the scene's stated units (JWL A and B in Pa in a
+// Mbar scene, a density in g/cm^3 in an SI scene), and, whatever the units, a JWL A far from
+// rho0 D^2 of its burn and a region's density far from its material's rho0.
+void warn_implausible_units(const toml::table& document, const Problem& problem, const std::vector<ZoneState>& states,
+                            const std::function<void(const std::string&, const std::string&)>& warn) {
+  const std::optional<UnitSystem> units = stated_units(document);
+  const auto check = [&](const std::string& path, double value, double lo, double hi, const char* unit,
+                         const char* what) {
+    if (!units || (value >= lo && value <= hi)) return;
+    warn(path, show(value) + " is implausible for " + what + " in the scene's units (scene.units = \"" + units->text +
+                   "\": " + show(lo) + " to " + show(hi) + " " + unit + "); check its units (a value in " +
+                   units->slip + "?)");
+  };
+  for (std::size_t m = 0; m < problem.materials.size(); ++m) {
+    const Material& material = problem.materials[m];
+    const std::string path = "material[" + std::to_string(m) + "].";
+    double rho0 = 0;
+    if (const auto* mg = std::get_if<MieGruneisen>(&material.eos)) {
+      rho0 = mg->rho0;
+      if (units) check(path + "a0", mg->a0, units->speed_lo, units->speed_hi, units->speed, "a sound speed");
+    } else if (const auto* jwl = std::get_if<Jwl>(&material.eos)) {
+      rho0 = jwl->rho0;
+      if (units) {
+        check(path + "A", jwl->A, units->pressure_lo, units->pressure_hi, units->pressure, "a JWL constant");
+        check(path + "B", jwl->B, units->pressure_lo, units->pressure_hi, units->pressure, "a JWL constant");
+      }
+      if (material.burn) {
+        const double scale = jwl->rho0 * material.burn->detonation_speed * material.burn->detonation_speed;
+        const double ratio = jwl->A / scale;
+        if (!(ratio >= 0.1 && ratio <= 1000))
+          warn(path + "A", show(jwl->A) + " is " + show(ratio) + " times rho0 D^2 = " + show(scale) +
+                               " of its burn (real explosives: 1 to 100): A, rho0 and detonation_speed are in "
+                               "different units");
+      }
+    } else if (const auto* sg = std::get_if<StiffenedGas>(&material.eos)) {
+      if (units && sg->p_inf > 0)
+        check(path + "p_inf", sg->p_inf, units->pressure_lo, units->pressure_hi, units->pressure, "a pressure");
+    }
+    if (units && rho0 > 0)
+      check(path + "rho0", rho0, units->density_lo, units->density_hi, units->density,
+            "the density of a condensed material");
+    if (units && material.strength) {
+      const double mu = shear_modulus(*material.strength, {});
+      if (mu > 0)
+        check(path + "strength.shear_modulus", mu, units->pressure_lo, units->pressure_hi, units->pressure,
+              "a shear modulus");
+    }
+    // A region's density against its material's reference density (the first zone's).
+    for (std::size_t r = 0; r < problem.regions.size() && rho0 > 0; ++r) {
+      const auto first = std::find_if(states.begin(), states.end(), [&](const ZoneState& s) {
+        return s.region == static_cast<int>(r) && s.material == static_cast<int>(m);
+      });
+      if (first == states.end() || (first->rho >= 0.1 * rho0 && first->rho <= 10 * rho0)) continue;
+      warn("region[" + std::to_string(r) + "].density",
+           show(first->rho) + " at " + point_text(first->centre_x, first->centre_y) + " is " + show(first->rho / rho0) +
+               " times the rho0 = " + show(rho0) + " of material '" + material.name +
+               "': the two are in different units");
+    }
+  }
+}
+
 }  // namespace
+
+void check_boundary_geometry(const toml::table& document, const Scene& scene) {
+  if (const auto wrong = boundary_geometry_problem(scene.problem))
+    throw Error(
+        Locator(document, scene.file).at(boundary_key(document, scene.problem.boundaries[wrong->boundary].tag)) + ": " +
+        wrong->message);
+}
 
 void review_scene(const toml::table& document, Scene& scene, const WarningThresholds& limits) {
   const Problem& problem = scene.problem;
@@ -225,13 +482,21 @@ void review_scene(const toml::table& document, Scene& scene, const WarningThresh
   // The first time step, estimated as the set-up will take it: cfl * L / c over the zones
   // (no artificial viscosity yet, so the estimate is an upper bound), then dt_init, dt_max.
   const std::vector<ZoneState> states = initial_states(problem);
+  // Unit slips first: an error below (a collapsing first step) is then likely theirs, and says so.
+  std::vector<std::string> unit_warnings;
+  warn_implausible_units(document, problem, states, [&](const std::string& path, const std::string& what) {
+    unit_warnings.push_back(key.at(path) + ": " + what);
+  });
+  const auto failure = [&](const std::string& message) {
+    return Error(unit_warnings.empty() ? message : message + " (note: " + unit_warnings.front() + ")");
+  };
   for (const ZoneState& s : states)
     if (s.material >= 0 && !std::isfinite(s.c))
-      throw Error(key.at("material[" + std::to_string(s.material) + "]") + ": the initial state at " +
-                  point_text(s.centre_x, s.centre_y) + " (region '" + problem.regions[s.region].region + "', density " +
-                  show(s.rho) +
-                  ") has a non-finite sound speed; check the EOS constants and the "
-                  "initial state");
+      throw failure(key.at("material[" + std::to_string(s.material) + "]") + ": the initial state at " +
+                    point_text(s.centre_x, s.centre_y) + " (region '" + problem.regions[s.region].region +
+                    "', density " + show(s.rho) +
+                    ") has a non-finite sound speed; check the EOS constants and the "
+                    "initial state");
   const double drive = driver_speed(problem, states);
   double cfl_length_over_c = std::numeric_limits<double>::infinity();   // min L / c
   double length_over_signal = std::numeric_limits<double>::infinity();  // min L / (c + |v| + drive)
@@ -246,38 +511,43 @@ void review_scene(const toml::table& document, Scene& scene, const WarningThresh
   const std::string dt_min_text =
       options.dt_min > 0 ? "numerics.dt_min = " + show(dt_min) : "dt_min = 1e-8 time.end = " + show(dt_min);
   if (options.dt_max > 0 && options.dt_max < dt_min)
-    throw Error(key.at("numerics.dt_max") + ": " + show(options.dt_max) + " is below " + dt_min_text +
-                ": the first step would collapse; raise numerics.dt_max (or lower numerics.dt_min)");
+    throw failure(key.at("numerics.dt_max") + ": " + show(options.dt_max) + " is below " + dt_min_text +
+                  ": the first step would collapse; raise numerics.dt_max (or lower numerics.dt_min)");
   if (options.dt_init > 0 && options.dt_init < dt_min)
-    throw Error(key.at("numerics.dt_init") + ": " + show(options.dt_init) + " is below " + dt_min_text +
-                ": the first step would collapse; raise numerics.dt_init (or lower numerics.dt_min)");
+    throw failure(key.at("numerics.dt_init") + ": " + show(options.dt_init) + " is below " + dt_min_text +
+                  ": the first step would collapse; raise numerics.dt_init (or lower numerics.dt_min)");
   if (std::isfinite(cfl_length_over_c)) {
     const double dt_cfl = options.cfl * cfl_length_over_c;
     if (dt_cfl < dt_min) {
       const std::string estimate = "the CFL time step at t = 0 (about " + show(dt_cfl) + ")";
       if (options.dt_min > 0)
-        throw Error(key.at("numerics.dt_min") + ": " + show(dt_min) + " is above " + estimate +
-                    ": the first step would collapse; lower numerics.dt_min");
+        throw failure(key.at("numerics.dt_min") + ": " + show(dt_min) + " is above " + estimate +
+                      ": the first step would collapse; lower numerics.dt_min");
       if (HydroOptions{}.cfl * cfl_length_over_c >= dt_min)
-        throw Error(key.at("numerics.cfl") + ": " + show(options.cfl) + " puts " + estimate + " below " + dt_min_text +
-                    ": the first step would collapse; use a cfl near the default " + show(HydroOptions{}.cfl));
-      throw Error(key.at("time.end") + ": " + show(t_end) + " is " +
-                  (std::isfinite(t_end / dt_cfl) ? show(t_end / dt_cfl) : std::string("over 1e300")) + " times " +
-                  estimate +
-                  ", and the step may not fall below 1e-8 time.end: the run would stop at once; check the units of "
-                  "time.end");
+        throw failure(key.at("numerics.cfl") + ": " + show(options.cfl) + " puts " + estimate + " below " +
+                      dt_min_text + ": the first step would collapse; use a cfl near the default " +
+                      show(HydroOptions{}.cfl));
+      throw failure(key.at("time.end") + ": " + show(t_end) + " is " +
+                    (std::isfinite(t_end / dt_cfl) ? show(t_end / dt_cfl) : std::string("over 1e300")) + " times " +
+                    estimate +
+                    ", and the step may not fall below 1e-8 time.end: the run would stop at once; check the units of "
+                    "time.end");
     }
   }
 
   // Dumps: refused above output.max_dumps (a tiny interval would fill the disk).
   const long dumps = estimated_dumps(control, problem.t_end);
   if (dumps > control.max_dumps)
-    throw Error(key.at("output.dump_interval") + ": " + show(control.dump_interval) + " with time.end = " +
-                show(problem.t_end) + " gives " + show(std::floor(problem.t_end / control.dump_interval) + 2) +
-                " dumps, more than output.max_dumps = " + std::to_string(control.max_dumps) +
-                "; raise output.dump_interval (or output.max_dumps if you mean it)");
+    throw failure(key.at("output.dump_interval") + ": " + show(control.dump_interval) + " with time.end = " +
+                  show(problem.t_end) + " gives " + show(std::floor(problem.t_end / control.dump_interval) + 2) +
+                  " dumps, more than output.max_dumps = " + std::to_string(control.max_dumps) +
+                  "; raise output.dump_interval (or output.max_dumps if you mean it)");
+
+  check_deposits(problem, key);
 
   // Warnings from here on.
+  warn_unlit_burns(problem, states, warn);
+  scene.warnings.insert(scene.warnings.end(), unit_warnings.begin(), unit_warnings.end());
   // Few cycles: from the smallest plausible step (signal speed c + |v| + drivers), so the
   // count is an upper bound; many cycles: from the largest (c alone), a lower bound.
   auto capped = [&](double dt) { return options.dt_max > 0 ? std::min(dt, options.dt_max) : dt; };
@@ -333,6 +603,21 @@ void review_scene(const toml::table& document, Scene& scene, const WarningThresh
                                           show(bulk) + " of the EOS at t = 0: check the units of the two");
     }
   }
+
+  if (const toml::table* ale = document["ale"].as_table())
+    for (const auto& [name, value] : *ale)
+      if (const std::string why = dead_ale_key(problem.ale, ale->contains("mode"), std::string(name.str()));
+          !why.empty())
+        warn("ale." + std::string(name.str()), why);
+
+  if (const VelocityConflict conflict = shared_point_velocities(problem); conflict.count > 0)
+    warn("region[" + std::to_string(conflict.later_region) + "].velocity",
+         std::to_string(conflict.count) + " point(s) shared with region '" +
+             problem.regions[conflict.first_region].region + "' (region[" + std::to_string(conflict.first_region) +
+             "]) get different initial velocities from the two (e.g. at " + point_text(conflict.x, conflict.y) +
+             ", up to |dv| = " + show(conflict.difference) + "); the first [[region]] in the file wins there, so " +
+             "the order of the blocks sets the initial momentum: give the regions one velocity on their interface " +
+             "(or order the blocks as meant)");
 
   for (std::size_t r = 0; r < problem.regions.size(); ++r) {
     std::size_t count = 0;

@@ -18,6 +18,11 @@ struct WarningThresholds {
   double speed_over_sound = 10;                                   ///< |v| / c above this (where c > 0)
 };
 
+/// Throws stagger::Error "FILE:LINE: key 'boundary[i].tags': ..." for a boundary condition
+/// that cannot hold where it lands (hydro/boundary_checks.hpp): before Problem::validate, so
+/// that the message has the line.
+void check_boundary_geometry(const toml::table& document, const Scene& scene);
+
 /// Throws stagger::Error "FILE:LINE: key '...': ..." for a dump schedule above
 /// output.max_dumps or a first time step below dt_min; appends warnings to scene.warnings.
 void review_scene(const toml::table& document, Scene& scene, const WarningThresholds& limits = {});

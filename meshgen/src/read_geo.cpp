@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "geo_parameters.hpp"
+#include "geo_scanner.hpp"
 #include "gmsh_api.hpp"
 #include "gmsh_child.hpp"
 #include "gmsh_session.hpp"
@@ -73,9 +74,11 @@ PolygonSoup mesh_geo(const std::string& path, const std::string& file, const Geo
 PolygonSoup read_geo(const std::string& path, const GeoOptions& options) {
   require_file(path, "geometry file");
   // STAGGER_GEO_SCAN=0 skips the scan but keeps the sandbox (tests of the sandbox).
+  // Allowed commands are not refused, but the files included are still checked (regular
+  // files, no include cycle).
   const char* scan = std::getenv("STAGGER_GEO_SCAN");
-  if (!options.allow_commands && !(scan && std::string(scan) == "0")) {
-    const std::string found = find_outside_command(path);
+  if (!(scan && std::string(scan) == "0")) {
+    const std::string found = scan_geo(path, !options.allow_commands);
     if (!found.empty())
       throw Error(found +
                   "; stagger refuses .geo commands that reach outside the mesh (set "

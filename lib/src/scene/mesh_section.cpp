@@ -169,9 +169,10 @@ Mesh read_mesh_section(Section& section, const std::string& scene_file, std::vec
     const std::string extension = resolved.extension().string();
     if (extension != ".geo" && extension != ".msh")
       section.fail("file", "'" + file + "' is neither a .geo nor a .msh file");
-    std::error_code error;
-    if (!std::filesystem::is_regular_file(resolved, error))
-      section.fail("file", "'" + file + "' not found (looked for " + resolved.lexically_normal().string() + ")",
+    if (const std::string problem = meshgen::file_problem(resolved.string()); !problem.empty())
+      section.fail("file",
+                   "'" + file + "' " + problem + (problem.rfind("not found", 0) == 0 ? "" : ", not a regular file") +
+                       " (looked for " + resolved.lexically_normal().string() + ")",
                    "paths are relative to the scene file");
     meshgen::GeoOptions options;
     const std::string triangles = section.choice("triangles", {"accept", "subdivide", "reject"}, "accept");

@@ -34,6 +34,17 @@ struct GeoOptions {
   bool allow_commands = false;
 };
 
+/// Why `path` cannot be read as a mesh or geometry file, or "" if it can: "not found", "is a
+/// directory", "is a FIFO (named pipe)", "is a character device", "is a symbolic link loop",
+/// ... (links are followed, so a link to a regular file is one).
+std::string file_problem(const std::string& path);
+
+/// Throws stagger::Error "FILE:LINE: what is wrong" unless `path` is a mesh gmsh reads as one:
+/// it starts with $MeshFormat, version 2.x or 4.0/4.1, ASCII or binary (gmsh runs any other
+/// .msh as a .geo script), and in an ASCII file every $PhysicalNames, $Nodes and $Elements
+/// count matches its entries (gmsh drops the entries beyond a low count without a word).
+void check_msh_file(const std::string& path);
+
 /// The first .geo command of `path` (or of a file it includes) that reaches outside the
 /// mesh, as "FILE:LINE: what", or "" if there is none (docs/mesh.md lists the commands).
 std::string find_outside_command(const std::string& path);

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "stagger/error.hpp"
+#include "toml_reader.hpp"
 
 namespace stagger::scene_detail {
 
@@ -45,6 +46,9 @@ std::vector<Segment> split_path(const std::string& path, const std::string& labe
       position = close + 1;
     }
     segments.push_back(segment);
+    if (segments.size() > kMaxKeyDepth)
+      fail(label.substr(0, 80) + "...",
+           "the key nests more than " + std::to_string(kMaxKeyDepth) + " levels deep; no scene key is that deep");
     if (dot == std::string::npos) break;
     start = dot + 1;
   }
@@ -60,6 +64,9 @@ bool looks_numeric(const std::string& value) {
 
 // Parses `key = value` as a one-line document whose nodes carry the source "--set ...".
 toml::table parse_assignment(const std::string& keys, const std::string& value, const std::string& label) {
+  if (!too_deep_line(keys + " = " + value).empty())
+    fail(label.substr(0, 80) + "...", "the value nests more than " + std::to_string(kMaxKeyDepth) +
+                                          " levels deep (dotted keys and inline tables); no scene key is that deep");
   try {
     return toml::parse(keys + " = " + value, label);
   } catch (const toml::parse_error&) {

@@ -157,8 +157,9 @@ void print_warnings(const Scene& scene) {
 
 // Builds the Simulation; its set-up errors (which the scene reader cannot see, e.g. periodic
 // sides that do not match) are located at the scene file, the same for `run` and `check`.
-Simulation set_up(Problem problem, const std::string& scene_file) {
+Simulation set_up(Problem problem, const std::string& scene_file, bool distributed = true) {
   try {
+    if (!distributed) return Simulation(std::move(problem));
     return distributed_simulation(std::move(problem));  // under mpirun: this rank's part
   } catch (const CollectiveError& failure) {
     throw CollectiveError(scene_file + ": set-up failed: " + failure.what());
@@ -200,6 +201,10 @@ int run_command(const std::vector<std::string>& args) {
   // rank 0 reports (docs/parallel.md).
   start_mpi_if_launched();
   const bool root = mpi_state().rank == 0;
+  compare_start_on_every_rank(scene_path, overrides_of(arguments),
+                              {{"--out", arguments.has("--out") ? arguments.value("--out") : ""},
+                               {"--restart", arguments.has("--restart") ? arguments.value("--restart") : ""},
+                               {"--replace", arguments.flag("--replace") ? "yes" : ""}});
   Scene scene;
   RunControl control;
   scene = load_scene_on_every_rank(scene_path, overrides_of(arguments));
@@ -262,13 +267,21 @@ int check_command(const std::vector<std::string>& args) {
   }
   const Arguments arguments("stagger check", args, {{"--set", "", true, true}, {"--out", "", true, false}});
   const std::string scene_path = single_positional(arguments, "stagger check", "scene file");
-  const Scene scene = load_scene(scene_path, overrides_of(arguments));
-  // The same checks as `run` before its first step: output directory, then the set-up.
-  check_output_directory(arguments.has("--out") ? arguments.value("--out") : scene.control.output_directory);
-  static_cast<void>(set_up(scene.problem, scene_path));
-  std::cout << describe(scene);
-  print_warnings(scene);
-  std::cout << "scene is valid" << (scene.warnings.empty() ? "" : " (with warnings, on stderr)") << "\n";
+  // Under mpirun the ranks compare how they were started, then rank 0 alone checks (a serial
+  // set-up) and prints; its error stops every rank alike.
+  start_mpi_if_launched();
+  compare_start_on_every_rank(scene_path, overrides_of(arguments),
+                              {{"--out", arguments.has("--out") ? arguments.value("--out") : ""}});
+  on_every_rank([&] {
+    if (mpi_state().rank != 0) return;
+    const Scene scene = load_scene(scene_path, overrides_of(arguments));
+    // The same checks as `run` before its first step: output directory, then the set-up.
+    check_output_directory(arguments.has("--out") ? arguments.value("--out") : scene.control.output_directory);
+    static_cast<void>(set_up(scene.problem, scene_path, false));
+    std::cout << describe(scene);
+    print_warnings(scene);
+    std::cout << "scene is valid" << (scene.warnings.empty() ? "" : " (with warnings, on stderr)") << "\n";
+  });
   return 0;
 }
 

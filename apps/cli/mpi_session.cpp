@@ -109,13 +109,13 @@ void compare_start_on_every_rank([[maybe_unused]] const std::string& scene_path,
   MPI_Allgather(mine, 3, MPI_UINT64_T, all.data(), 3, MPI_UINT64_T, MPI_COMM_WORLD);
   std::string outputs_named;
   for (const auto& [key, value] : outputs) outputs_named += (outputs_named.empty() ? "" : ", ") + key;
-  const char* const what[3] = {"scene file (its text differs from rank 0's)", "--set values", "output settings"};
+  const std::string what[3] = {"a scene file whose text differs", "--set values that differ",
+                               "output settings (" + outputs_named + ") that differ"};
   for (int r = 1; r < state.ranks; ++r)
     for (int k = 0; k < 3; ++k)
       if (all[3 * static_cast<std::size_t>(r) + k] != all[k])
         throw CollectiveError("rank " + std::to_string(r) + " of " + std::to_string(state.ranks) +
-                              " was started with another " + what[k] +
-                              (k == 2 ? " (" + outputs_named + ")" : std::string()) + " than rank 0 (" + scene_path +
+                              " was started with " + what[k] + " from rank 0's (" + scene_path +
                               "); start every rank with the same scene, --set values and options");
 #endif
 }

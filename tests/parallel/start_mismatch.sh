@@ -30,16 +30,16 @@ mismatch() {
     { echo "FAIL: $name: no '$expected' in:"; cat "$work/$name.err"; status=1; }
   echo "$name: $(grep '^stagger: error:' "$work/$name.err" | cut -c1-200)"
 }
-mismatch scene "rank 1 of 2 was started with another scene file (its text differs from rank 0's)" \
+mismatch scene "rank 1 of 2 was started with a scene file whose text differs from rank 0's" \
   -np 1 "$stagger" run "$scenes/sod.toml" "${small[@]}" --out "$work/a" : \
   -np 1 "$stagger" run "$work/sod_other.toml" "${small[@]}" --out "$work/a"
-mismatch set "rank 1 of 2 was started with another --set values" \
+mismatch set "rank 1 of 2 was started with --set values that differ from rank 0's" \
   -np 1 "$stagger" run "$scenes/sod.toml" "${small[@]}" --out "$work/b" : \
   -np 1 "$stagger" run "$scenes/sod.toml" "${small[@]}" --set numerics.cfl=0.3 --out "$work/b"
-mismatch out "rank 2 of 3 was started with another output settings (--out, --restart, --replace)" \
+mismatch out "rank 2 of 3 was started with output settings (--out, --restart, --replace) that differ" \
   -np 2 "$stagger" run "$scenes/sod.toml" "${small[@]}" --out "$work/c" : \
   -np 1 "$stagger" run "$scenes/sod.toml" "${small[@]}" --out "$work/c2"
-mismatch check "rank 1 of 2 was started with another --set values" \
+mismatch check "rank 1 of 2 was started with --set values that differ" \
   -np 1 "$stagger" check "$scenes/sod.toml" --set time.end=0.1 : -np 1 "$stagger" check "$scenes/sod.toml"
 # The same text under another name is the same scene: the run completes.
 timeout 120 mpirun --oversubscribe -np 1 "$stagger" run "$scenes/sod.toml" "${small[@]}" --out "$work/d" : \

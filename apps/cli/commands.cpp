@@ -99,6 +99,8 @@ options:
                                  0: none)
   --gmsh-memory-limit MIB        memory (address-space) limit of the gmsh child process
                                  (default 8192; 0: none)
+  --max-points N                 refuse a .geo whose mesh would have more points, as
+                                 estimated from its curves' mesh (default 5e6; 0: none)
   --allow-geo-commands           allow .geo commands that reach outside the mesh
                                  (SystemCall, Printf > file, Exit, Sleep, Save, ...):
                                  this runs arbitrary code, use it on trusted files only
@@ -297,11 +299,13 @@ int mesh_command(const std::vector<std::string>& args) {
                              {"--check", "", false, false},
                              {"--gmsh-time-limit", "", true, false},
                              {"--gmsh-memory-limit", "", true, false},
+                             {"--max-points", "", true, false},
                              {"--allow-geo-commands", "", false, false}});
   const std::string input = single_positional(arguments, "stagger mesh", "mesh file (.geo or .msh)");
   meshgen::GeoOptions options;
-  for (const auto& [flag, limit] : {std::pair{"--gmsh-time-limit", &options.time_limit_seconds},
-                                    std::pair{"--gmsh-memory-limit", &options.memory_limit_mib}}) {
+  for (const auto& [flag, limit] :
+       {std::pair{"--gmsh-time-limit", &options.time_limit_seconds},
+        std::pair{"--gmsh-memory-limit", &options.memory_limit_mib}, std::pair{"--max-points", &options.max_points}}) {
     if (!arguments.has(flag)) continue;
     const std::string text = arguments.value(flag);
     std::size_t used = 0;

@@ -14,6 +14,7 @@
 #include "gmsh_session.hpp"
 #include "mesh_file.hpp"
 #include "msh_element_types.hpp"
+#include "point_estimate.hpp"
 #include "soup_extraction.hpp"
 #include "stagger/error.hpp"
 #include "stagger/meshgen.hpp"
@@ -60,6 +61,7 @@ PolygonSoup mesh_geo(const std::string& path, const std::string& file, const Geo
     gm::option::setNumber("Mesh.RecombinationAlgorithm", 1);
   }
   require_planar_model(path, true);
+  check_point_estimate(path, options.max_points);  // meshes the curves first
   gm::model::mesh::generate(2);
   throw_if_gmsh_error(path, "meshing");
   if (options.triangles == TrianglePolicy::subdivide) {

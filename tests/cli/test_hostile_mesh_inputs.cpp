@@ -116,6 +116,32 @@ TEST_F(HostileMeshInputs, KeysNested50000DeepAreErrorsNotStackOverflows) {
   EXPECT_NE(shallow.err.find("unknown key"), std::string::npos) << shallow.err;
 }
 
+// Mesh sizes asking for about 1e9 points used to mesh for minutes with no word: the curves'
+// mesh gives a lower bound at once, refused above mesh.max_points (--max-points; 0: none).
+TEST_F(HostileMeshInputs, MeshSizesAskingForTooManyPointsAreRefusedAtOnce) {
+  const std::string square =
+      "Point(1) = {0, 0, 0, lc}; Point(2) = {1, 0, 0, lc};\n"
+      "Point(3) = {1, 1, 0, lc}; Point(4) = {0, 1, 0, lc};\n"
+      "Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};\n"
+      "Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};\n"
+      "Physical Surface(\"domain\") = {1};\n";
+  const std::string huge = write("huge.geo", "lc = 1e-8;\n" + square);  // 1e16 points, 4e8 on the curves
+  const auto start = std::chrono::steady_clock::now();
+  expect_error(stagger("mesh " + huge),
+               {huge + ": its mesh would have at least about", "the sizes asked for are smaller still",
+                "more than the limit of 5e+06 (scene key mesh.max_points, stagger mesh --max-points; 0: no limit)"});
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 20.0);
+  // A small mesh (lc 0.1: 140 points) against a limit of 50; without a limit it meshes.
+  const std::string small = write("small.geo", "lc = 0.1;\n" + square);
+  expect_error(
+      stagger("mesh " + small + " --max-points 50"),
+      {"at least about 100 points (surface 1: area 1, boundary segments up to 0.1 long", "more than the limit of 50"});
+  const Result meshed = stagger("mesh " + small + " --max-points 0");
+  EXPECT_EQ(meshed.status, 0) << meshed.err;
+  EXPECT_NE(meshed.out.find("140 points"), std::string::npos) << meshed.out;
+  expect_error(stagger("mesh " + small + " --max-points -1"), {"--max-points '-1': give a number >= 0"});
+}
+
 // The pids of the children of `parent` (from /proc/PID/task/*/children).
 std::vector<pid_t> children_of(pid_t parent) {
   std::vector<pid_t> children;

@@ -186,6 +186,9 @@ Mesh read_mesh_section(Section& section, const std::string& scene_file, std::vec
     options.memory_limit_mib = section.number("gmsh_memory_limit", options.memory_limit_mib);
     if (!(options.memory_limit_mib >= 0 && std::isfinite(options.memory_limit_mib)))
       section.fail("gmsh_memory_limit", "must be >= 0 MiB (0: no limit), got " + show(options.memory_limit_mib));
+    options.max_points = section.number("max_points", options.max_points);
+    if (!(options.max_points >= 0 && std::isfinite(options.max_points)))
+      section.fail("max_points", "must be >= 0 (0: no limit), got " + show(options.max_points));
     options.allow_commands = section.boolean("allow_geo_commands", false);
     std::vector<std::string> parameter_names;
     if (auto parameters = section.subtable("parameters")) {

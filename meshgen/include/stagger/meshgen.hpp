@@ -28,6 +28,10 @@ struct GeoOptions {
   TrianglePolicy triangles = TrianglePolicy::accept;       ///< what to do with leftover triangles
   double time_limit_seconds = 600;                         ///< wall-time limit of the gmsh child; 0: none
   double memory_limit_mib = 8192;                          ///< address-space limit of the gmsh child (MiB); 0: none
+  /// Refuse a .geo whose mesh would have more points than this (estimated from its boundary
+  /// mesh before the surfaces are meshed; 0: no limit). A mesh of 1e6 points took more than
+  /// 600 s (the time limit) on a 2-core machine.
+  double max_points = 5e6;
   /// Allow .geo commands that reach outside the mesh (SystemCall, Printf > file, Exit, Sleep,
   /// Save, Merge of a script, ...). They run arbitrary code; by default they are refused
   /// before gmsh runs.

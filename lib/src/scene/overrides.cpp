@@ -19,6 +19,11 @@ struct Segment {
   throw Error(label + ": " + what);
 }
 
+// A label cut to 80 characters (a path or value 50 000 levels deep is 100 000 of them).
+std::string shortened(const std::string& label) {
+  return label.size() > 80 ? label.substr(0, 80) + "..." : label;
+}
+
 std::vector<Segment> split_path(const std::string& path, const std::string& label) {
   std::vector<Segment> segments;
   std::size_t start = 0;
@@ -65,8 +70,8 @@ bool looks_numeric(const std::string& value) {
 // Parses `key = value` as a one-line document whose nodes carry the source "--set ...".
 toml::table parse_assignment(const std::string& keys, const std::string& value, const std::string& label) {
   if (!too_deep_line(keys + " = " + value).empty())
-    fail(label.substr(0, 80) + "...", "the value nests more than " + std::to_string(kMaxKeyDepth) +
-                                          " levels deep (dotted keys and inline tables); no scene key is that deep");
+    fail(shortened(label), "the value nests more than " + std::to_string(kMaxKeyDepth) +
+                               " levels deep (dotted keys and inline tables); no scene key is that deep");
   try {
     return toml::parse(keys + " = " + value, label);
   } catch (const toml::parse_error&) {

@@ -52,7 +52,7 @@ std::vector<Segment> split_path(const std::string& path, const std::string& labe
     }
     segments.push_back(segment);
     if (segments.size() > kMaxKeyDepth)
-      fail(label.substr(0, 80) + "...",
+      fail(shortened(label),
            "the key nests more than " + std::to_string(kMaxKeyDepth) + " levels deep; no scene key is that deep");
     if (dot == std::string::npos) break;
     start = dot + 1;

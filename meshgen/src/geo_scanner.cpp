@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <deque>
 #include <filesystem>
 #include <map>
@@ -128,6 +129,23 @@ class GeoLexer {
   std::deque<GeoToken> ahead_;
 };
 
+/// Text from the file for a message: control characters and bytes outside printable ASCII
+/// as \xNN (a file name in an Include must not reach the terminal as an escape sequence).
+std::string printable(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte >= 0x7f) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
+      out += escaped;
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
 /// What a command does, for the message; "" if the word is not refused.
 std::string outside_command(const std::string& word) {
   static const std::map<std::string, std::string> commands = {
@@ -168,7 +186,7 @@ class GeoScan {
       // Regular files only, opened without blocking (an Include of a FIFO or /dev/zero).
       InputFile in(file.string(), "geometry file");
       if (in.size() > kMaxFileBytes || total_bytes_ + in.size() > kMaxTotalBytes)
-        throw Error(file.string() + ": the .geo files to scan (this one " + std::to_string(in.size() >> 10) +
+        throw Error(printable(file.string()) + ": the .geo files to scan (this one " + std::to_string(in.size() >> 10) +
                     " KiB) exceed stagger's limit of " + std::to_string(kMaxFileBytes >> 20) + " MiB a file and " +
                     std::to_string(kMaxTotalBytes >> 20) + " MiB in all");
       const std::string text = in.read_all(kMaxFileBytes);
@@ -196,8 +214,8 @@ class GeoScan {
   };
 
   std::string follow(const Target& target) {
-    const std::string name = target.path.string();
-    const std::string problem = file_problem(name);
+    const std::string name = printable(target.path.string());
+    const std::string problem = file_problem(target.path.string());
     if (problem.rfind("not found", 0) == 0) return "";  // gmsh reports a missing file itself
     if (!problem.empty())
       throw Error(target.at + "'" + target.word + "' of '" + name + "': it " + problem +
@@ -205,7 +223,7 @@ class GeoScan {
     if (target.extension == ".msh") {
       if (!refuse_commands_) return "";  // an allowed file may run scripts anyway
       try {
-        check_msh_file(name);
+        check_msh_file(target.path.string());
       } catch (const Error& error) {
         throw Error(target.at + "'" + target.word +
                     "' of a .msh that is not a mesh gmsh reads as one: " + error.what());
@@ -218,10 +236,11 @@ class GeoScan {
     const auto cycle = std::find(chain_.begin(), chain_.end(), ec ? target.path : canonical);
     if (cycle != chain_.end()) {
       std::string loop;
-      for (auto it = cycle; it != chain_.end(); ++it) loop += it->filename().string() + " -> ";
+      for (auto it = cycle; it != chain_.end(); ++it) loop += printable(it->filename().string()) + " -> ";
       throw Error(target.at + "'" + target.word + "' of '" + name + "' " +
                   (cycle + 1 == chain_.end() ? "includes the file itself" : "includes a file that includes this one") +
-                  ": an include cycle (" + loop + target.path.filename().string() + "); remove the " + target.word);
+                  ": an include cycle (" + loop + printable(target.path.filename().string()) + "); remove the " +
+                  target.word);
     }
     if (chain_.size() > 20) return target.at + "'" + target.word + "' nests more than 20 files deep";
     return scan(target.path);
@@ -230,7 +249,7 @@ class GeoScan {
   /// Scans one file's text; the files it names are added to `targets`.
   std::string scan_text(const std::filesystem::path& file, const std::string& text, std::vector<Target>& targets) {
     GeoLexer lexer(text);
-    const std::string name = file.string();
+    const std::string name = printable(file.string());
     const auto at = [&](int line) { return name + ":" + std::to_string(line) + ": "; };
     const auto is_symbol = [](const GeoToken* t, char c) {
       return t && t->kind == GeoToken::symbol && t->text[0] == c;
@@ -292,7 +311,7 @@ class GeoScan {
         static const std::set<std::string> readable = {".step", ".stp", ".iges", ".igs", ".brep",
                                                        ".brp",  ".msh", ".stl",  ".geo"};
         if (refuse_commands_ && (!readable.count(extension) || (raw != extension && raw != upper)))
-          return at(token.line) + "'" + word + "' of a '" + raw +
+          return at(token.line) + "'" + word + "' of a '" + printable(raw) +
                  "' file, which gmsh may run (stagger allows Merge of .step, .stp, .iges, .igs, .brep, .brp, "
                  ".msh, .stl and .geo files named by one string)";
       } else {

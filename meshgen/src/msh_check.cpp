@@ -6,6 +6,7 @@
 /// count says, so a low count drops the rest of the section without a word.
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <set>
 #include <sstream>
 #include <string>
@@ -65,10 +66,20 @@ std::vector<std::string> words(const std::string& line) {
   return out;
 }
 
-/// A line for a message: quoted, at most 60 characters.
+/// A line for a message: quoted, at most 60 characters, control characters and other
+/// bytes outside printable ASCII as \xNN (they must not reach the terminal).
 std::string quoted(const std::string& line) {
   std::string text = "'";
-  text.append(line, 0, 60);
+  for (const char c : line.substr(0, 60)) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte >= 0x7f) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
+      text += escaped;
+    } else {
+      text += c;
+    }
+  }
   return text.append(line.size() > 60 ? "...'" : "'");
 }
 

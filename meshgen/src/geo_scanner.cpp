@@ -242,7 +242,7 @@ class GeoScan {
                   ": an include cycle (" + loop + printable(target.path.filename().string()) + "); remove the " +
                   target.word);
     }
-    if (chain_.size() > 20) return target.at + "'" + target.word + "' nests more than 20 files deep";
+    if (chain_.size() > 20) throw Error(target.at + "'" + target.word + "' nests more than 20 files deep");
     return scan(target.path);
   }
 

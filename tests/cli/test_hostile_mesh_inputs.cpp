@@ -89,6 +89,13 @@ TEST_F(HostileMeshInputs, GeoScanRefusesFifosAndHugeIncludesWithoutBlocking) {
   }
   const std::string includes_big = write("includes_big.geo", "Include \"big.geo\";\n");
   expect_error(stagger("mesh " + includes_big), {"big.geo", "exceed stagger's limit of 16 MiB a file"});
+  // Includes 25 files deep (no cycle): one error at the 21st, also with allowed commands.
+  for (int i = 0; i < 25; ++i)
+    write("chain" + std::to_string(i) + ".geo", "Include \"chain" + std::to_string(i + 1) + ".geo\";\n");
+  write("chain25.geo", "x = 1;\n");
+  for (const char* allow : {"", " --allow-geo-commands"})
+    expect_error(stagger("mesh " + (directory_ / "chain0.geo").string() + allow),
+                 {"chain20.geo:1: 'Include' nests more than 20 files deep"});
 }
 
 // Keys nested 50 000 deep (a dotted key in the file, a --set path, an inline table in a --set

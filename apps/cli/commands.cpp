@@ -99,6 +99,8 @@ options:
                                  0: none)
   --gmsh-memory-limit MIB        memory (address-space) limit of the gmsh child process
                                  (default 8192; 0: none)
+  --max-points N                 refuse a .geo whose mesh would have more points, as
+                                 estimated from its curves' mesh (default 5e6; 0: none)
   --allow-geo-commands           allow .geo commands that reach outside the mesh
                                  (SystemCall, Printf > file, Exit, Sleep, Save, ...):
                                  this runs arbitrary code, use it on trusted files only
@@ -157,8 +159,9 @@ void print_warnings(const Scene& scene) {
 
 // Builds the Simulation; its set-up errors (which the scene reader cannot see, e.g. periodic
 // sides that do not match) are located at the scene file, the same for `run` and `check`.
-Simulation set_up(Problem problem, const std::string& scene_file) {
+Simulation set_up(Problem problem, const std::string& scene_file, bool distributed = true) {
   try {
+    if (!distributed) return Simulation(std::move(problem));
     return distributed_simulation(std::move(problem));  // under mpirun: this rank's part
   } catch (const CollectiveError& failure) {
     throw CollectiveError(scene_file + ": set-up failed: " + failure.what());
@@ -200,6 +203,10 @@ int run_command(const std::vector<std::string>& args) {
   // rank 0 reports (docs/parallel.md).
   start_mpi_if_launched();
   const bool root = mpi_state().rank == 0;
+  compare_start_on_every_rank(scene_path, overrides_of(arguments),
+                              {{"--out", arguments.has("--out") ? arguments.value("--out") : ""},
+                               {"--restart", arguments.has("--restart") ? arguments.value("--restart") : ""},
+                               {"--replace", arguments.flag("--replace") ? "yes" : ""}});
   Scene scene;
   RunControl control;
   scene = load_scene_on_every_rank(scene_path, overrides_of(arguments));
@@ -262,13 +269,21 @@ int check_command(const std::vector<std::string>& args) {
   }
   const Arguments arguments("stagger check", args, {{"--set", "", true, true}, {"--out", "", true, false}});
   const std::string scene_path = single_positional(arguments, "stagger check", "scene file");
-  const Scene scene = load_scene(scene_path, overrides_of(arguments));
-  // The same checks as `run` before its first step: output directory, then the set-up.
-  check_output_directory(arguments.has("--out") ? arguments.value("--out") : scene.control.output_directory);
-  static_cast<void>(set_up(scene.problem, scene_path));
-  std::cout << describe(scene);
-  print_warnings(scene);
-  std::cout << "scene is valid" << (scene.warnings.empty() ? "" : " (with warnings, on stderr)") << "\n";
+  // Under mpirun the ranks compare how they were started, then rank 0 alone checks (a serial
+  // set-up) and prints; its error stops every rank alike.
+  start_mpi_if_launched();
+  compare_start_on_every_rank(scene_path, overrides_of(arguments),
+                              {{"--out", arguments.has("--out") ? arguments.value("--out") : ""}});
+  on_every_rank([&] {
+    if (mpi_state().rank != 0) return;
+    const Scene scene = load_scene(scene_path, overrides_of(arguments));
+    // The same checks as `run` before its first step: output directory, then the set-up.
+    check_output_directory(arguments.has("--out") ? arguments.value("--out") : scene.control.output_directory);
+    static_cast<void>(set_up(scene.problem, scene_path, false));
+    std::cout << describe(scene);
+    print_warnings(scene);
+    std::cout << "scene is valid" << (scene.warnings.empty() ? "" : " (with warnings, on stderr)") << "\n";
+  });
   return 0;
 }
 
@@ -284,11 +299,13 @@ int mesh_command(const std::vector<std::string>& args) {
                              {"--check", "", false, false},
                              {"--gmsh-time-limit", "", true, false},
                              {"--gmsh-memory-limit", "", true, false},
+                             {"--max-points", "", true, false},
                              {"--allow-geo-commands", "", false, false}});
   const std::string input = single_positional(arguments, "stagger mesh", "mesh file (.geo or .msh)");
   meshgen::GeoOptions options;
-  for (const auto& [flag, limit] : {std::pair{"--gmsh-time-limit", &options.time_limit_seconds},
-                                    std::pair{"--gmsh-memory-limit", &options.memory_limit_mib}}) {
+  for (const auto& [flag, limit] :
+       {std::pair{"--gmsh-time-limit", &options.time_limit_seconds},
+        std::pair{"--gmsh-memory-limit", &options.memory_limit_mib}, std::pair{"--max-points", &options.max_points}}) {
     if (!arguments.has(flag)) continue;
     const std::string text = arguments.value(flag);
     std::size_t used = 0;

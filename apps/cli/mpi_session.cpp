@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <vector>
 
@@ -68,6 +69,55 @@ void on_every_rank(const std::function<void()>& work) {
   }
 #endif
   work();
+}
+
+namespace {
+
+// FNV-1a, 64 bits: a digest to compare, not a defence against a crafted collision.
+std::uint64_t digest(const std::string& text, std::uint64_t hash = 0xcbf29ce484222325ULL) {
+  for (const char c : text) hash = (hash ^ static_cast<unsigned char>(c)) * 0x100000001b3ULL;
+  return hash;
+}
+
+std::uint64_t digest(const std::vector<std::pair<std::string, std::string>>& pairs) {
+  std::uint64_t hash = digest(std::to_string(pairs.size()));
+  for (const auto& [key, value] : pairs) hash = digest(value, digest(key + '\0' + std::to_string(value.size()), hash));
+  return hash;
+}
+
+// The scene file's text, or a text that says why it cannot be read (so that a rank that
+// cannot read it differs from one that can).
+std::string scene_text(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) return std::string("\x01not a regular file");
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return in ? text.str() : std::string("\x01unreadable");
+}
+
+}  // namespace
+
+void compare_start_on_every_rank([[maybe_unused]] const std::string& scene_path,
+                                 [[maybe_unused]] const std::vector<std::pair<std::string, std::string>>& overrides,
+                                 [[maybe_unused]] const std::vector<std::pair<std::string, std::string>>& outputs) {
+#ifdef STAGGER_WITH_MPI
+  const MpiState& state = mpi_state();
+  if (!state.active || state.ranks < 2) return;
+  const std::uint64_t mine[3] = {digest(scene_text(scene_path)), digest(overrides), digest(outputs)};
+  std::vector<std::uint64_t> all(3 * static_cast<std::size_t>(state.ranks));
+  MPI_Allgather(mine, 3, MPI_UINT64_T, all.data(), 3, MPI_UINT64_T, MPI_COMM_WORLD);
+  std::string outputs_named;
+  for (const auto& [key, value] : outputs) outputs_named += (outputs_named.empty() ? "" : ", ") + key;
+  const std::string what[3] = {"a scene file whose text differs", "--set values that differ",
+                               "output settings (" + outputs_named + ") that differ"};
+  for (int r = 1; r < state.ranks; ++r)
+    for (int k = 0; k < 3; ++k)
+      if (all[3 * static_cast<std::size_t>(r) + k] != all[k])
+        throw CollectiveError("rank " + std::to_string(r) + " of " + std::to_string(state.ranks) +
+                              " was started with " + what[k] + " from rank 0's (" + scene_path +
+                              "); start every rank with the same scene, --set values and options");
+#endif
 }
 
 Scene load_scene_on_every_rank(const std::string& path,

@@ -30,6 +30,14 @@ void finish_mpi();
 // MPI_Abort: the other ranks may be waiting in a collective operation.
 [[noreturn]] void abort_mpi();
 
+// Under mpirun: every rank's digest of what it was started with (the scene file's text, the
+// --set values, the output settings `outputs`: --out, --restart, ...) compared with rank
+// 0's; a rank started otherwise ends every rank with the same CollectiveError naming it (a
+// different scene was silently different physics, a different --out a deadlock). Collective.
+void compare_start_on_every_rank(const std::string& scene_path,
+                                 const std::vector<std::pair<std::string, std::string>>& overrides,
+                                 const std::vector<std::pair<std::string, std::string>>& outputs);
+
 // Runs `work` on every rank; an Error on some rank becomes the same CollectiveError on all.
 void on_every_rank(const std::function<void()>& work);
 // The scene, read on every rank (errors as on_every_rank's). Under MPI only rank 0 meshes it;

@@ -4,14 +4,18 @@
 #include <algorithm>
 #include <cctype>
 #include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <deque>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <map>
 #include <set>
 #include <string>
 #include <vector>
 
+#include "geo_scanner.hpp"
+#include "input_file.hpp"
+#include "stagger/error.hpp"
 #include "stagger/meshgen.hpp"
 
 namespace stagger::meshgen {
@@ -29,65 +33,117 @@ struct GeoToken {
   int line;
 };
 
-std::vector<GeoToken> geo_tokens(const std::string& text) {
-  std::vector<GeoToken> tokens;
-  const auto alpha = [](char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; };
-  const auto digit = [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; };
-  std::size_t i = 0;
-  int line = 1;
-  const std::size_t n = text.size();
-  const auto exponent = [&](std::size_t k) {  // length of [Ee][-+]?digit+ at k, or 0
-    if (k >= n || (text[k] != 'e' && text[k] != 'E')) return std::size_t{0};
+/// The tokens of .geo text, one at a time (a file's tokens are never all held: a file of
+/// a million ';' would take tens of bytes a character), with a look-ahead of a few tokens.
+class GeoLexer {
+ public:
+  explicit GeoLexer(const std::string& text) : text_(text) {}
+  /// The token `k` places ahead (0: the next), or nullptr past the end.
+  const GeoToken* peek(std::size_t k) {
+    while (ahead_.size() <= k) {
+      GeoToken token;
+      if (!produce(token)) return nullptr;
+      ahead_.push_back(std::move(token));
+    }
+    return &ahead_[k];
+  }
+  bool next(GeoToken& token) {
+    if (!peek(0)) return false;
+    token = std::move(ahead_.front());
+    ahead_.pop_front();
+    return true;
+  }
+
+ private:
+  static bool alpha(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
+  static bool digit(char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }
+  /// Length of [Ee][-+]?digit+ at k, or 0.
+  std::size_t exponent(std::size_t k) const {
+    const std::size_t n = text_.size();
+    if (k >= n || (text_[k] != 'e' && text_[k] != 'E')) return 0;
     std::size_t j = k + 1;
-    if (j < n && (text[j] == '+' || text[j] == '-')) ++j;
-    if (j >= n || !digit(text[j])) return std::size_t{0};
-    while (j < n && digit(text[j])) ++j;
+    if (j < n && (text_[j] == '+' || text_[j] == '-')) ++j;
+    if (j >= n || !digit(text_[j])) return 0;
+    while (j < n && digit(text_[j])) ++j;
     return j - k;
-  };
-  while (i < n) {
-    const char c = text[i];
-    if (c == '\n') {
-      ++line;
-      ++i;
-    } else if (std::isspace(static_cast<unsigned char>(c))) {
-      ++i;
-    } else if (c == '/' && i + 1 < n && text[i + 1] == '*') {
-      const std::size_t close = text.find("*/", i + 2);
-      const std::size_t stop = close == std::string::npos ? n : close + 2;
-      line += static_cast<int>(std::count(text.begin() + static_cast<std::ptrdiff_t>(i),
-                                          text.begin() + static_cast<std::ptrdiff_t>(stop), '\n'));
-      i = stop;
-    } else if (c == '/' && i + 1 < n && text[i + 1] == '/') {
-      while (i < n && text[i] != '\n') ++i;
-    } else if (c == '"' || c == '\'') {
-      const std::size_t close = text.find(c, i + 1);
-      const std::size_t stop = close == std::string::npos ? n : close;
-      tokens.push_back({GeoToken::string, text.substr(i + 1, stop - i - 1), line});
-      line += static_cast<int>(std::count(text.begin() + static_cast<std::ptrdiff_t>(i),
-                                          text.begin() + static_cast<std::ptrdiff_t>(stop), '\n'));
-      i = stop == n ? n : stop + 1;
-    } else if (alpha(c)) {
-      std::size_t j = i;
-      while (j < n && (alpha(text[j]) || digit(text[j]))) ++j;
-      tokens.push_back({GeoToken::identifier, text.substr(i, j - i), line});
-      i = j;
-    } else if (digit(c) || (c == '.' && i + 1 < n && digit(text[i + 1]))) {
-      // Longest of {digit}+, {digit}+"."{digit}*{exp}?, {digit}*"."{digit}+{exp}?, {digit}+{exp}.
-      std::size_t j = i;
-      while (j < n && digit(text[j])) ++j;
-      if (j < n && text[j] == '.') {
-        ++j;
+  }
+  void count_lines(std::size_t from, std::size_t to) {
+    line_ += static_cast<int>(std::count(text_.begin() + static_cast<std::ptrdiff_t>(from),
+                                         text_.begin() + static_cast<std::ptrdiff_t>(to), '\n'));
+  }
+  bool produce(GeoToken& token) {
+    const std::string& text = text_;
+    const std::size_t n = text.size();
+    std::size_t& i = i_;
+    while (i < n) {
+      const char c = text[i];
+      if (c == '\n') {
+        ++line_;
+        ++i;
+      } else if (std::isspace(static_cast<unsigned char>(c))) {
+        ++i;
+      } else if (c == '/' && i + 1 < n && text[i + 1] == '*') {
+        const std::size_t close = text.find("*/", i + 2);
+        const std::size_t stop = close == std::string::npos ? n : close + 2;
+        count_lines(i, stop);
+        i = stop;
+      } else if (c == '/' && i + 1 < n && text[i + 1] == '/') {
+        while (i < n && text[i] != '\n') ++i;
+      } else if (c == '"' || c == '\'') {
+        const std::size_t close = text.find(c, i + 1);
+        const std::size_t stop = close == std::string::npos ? n : close;
+        token = {GeoToken::string, text.substr(i + 1, stop - i - 1), line_};
+        count_lines(i, stop);
+        i = stop == n ? n : stop + 1;
+        return true;
+      } else if (alpha(c)) {
+        std::size_t j = i;
+        while (j < n && (alpha(text[j]) || digit(text[j]))) ++j;
+        token = {GeoToken::identifier, text.substr(i, j - i), line_};
+        i = j;
+        return true;
+      } else if (digit(c) || (c == '.' && i + 1 < n && digit(text[i + 1]))) {
+        // Longest of {digit}+, {digit}+"."{digit}*{exp}?, {digit}*"."{digit}+{exp}?, {digit}+{exp}.
+        std::size_t j = i;
         while (j < n && digit(text[j])) ++j;
+        if (j < n && text[j] == '.') {
+          ++j;
+          while (j < n && digit(text[j])) ++j;
+        }
+        j += exponent(j);
+        token = {GeoToken::number, text.substr(i, j - i), line_};
+        i = j;
+        return true;
+      } else {
+        token = {GeoToken::symbol, std::string(1, c), line_};
+        ++i;
+        return true;
       }
-      j += exponent(j);
-      tokens.push_back({GeoToken::number, text.substr(i, j - i), line});
-      i = j;
+    }
+    return false;
+  }
+
+  const std::string& text_;
+  std::size_t i_ = 0;
+  int line_ = 1;
+  std::deque<GeoToken> ahead_;
+};
+
+/// Text from the file for a message: control characters and bytes outside printable ASCII
+/// as \xNN (a file name in an Include must not reach the terminal as an escape sequence).
+std::string printable(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte >= 0x7f) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
+      out += escaped;
     } else {
-      tokens.push_back({GeoToken::symbol, std::string(1, c), line});
-      ++i;
+      out += c;
     }
   }
-  return tokens;
+  return out;
 }
 
 /// What a command does, for the message; "" if the word is not refused.
@@ -113,89 +169,174 @@ std::string outside_command(const std::string& word) {
   return it == commands.end() ? std::string() : it->second;
 }
 
-void scan_geo_file(const std::filesystem::path& file, std::set<std::filesystem::path>& seen, int depth,
-                   std::string& found) {
-  std::error_code ec;
-  const auto canonical = std::filesystem::weakly_canonical(file, ec);
-  if (!seen.insert(ec ? file : canonical).second) return;
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return;  // gmsh reports a missing include itself
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::vector<GeoToken> tokens = geo_tokens(text);
-  const std::string name = file.string();
-  const auto at = [&](std::size_t k) { return name + ":" + std::to_string(tokens[k].line) + ": "; };
-  const auto is_symbol = [&](std::size_t k, char c) {
-    return k < tokens.size() && tokens[k].kind == GeoToken::symbol && tokens[k].text[0] == c;
+/// The scan of one .geo and the files it includes or merges.
+class GeoScan {
+ public:
+  explicit GeoScan(bool refuse_commands) : refuse_commands_(refuse_commands) {}
+
+  /// The first refused command of `file` or of what it includes, or "". Throws for a file
+  /// that cannot be scanned (not a regular file, too large, an include cycle).
+  std::string scan(const std::filesystem::path& file) {
+    std::error_code ec;
+    const std::filesystem::path canonical = std::filesystem::weakly_canonical(file, ec);
+    const std::filesystem::path key = ec ? file : canonical;
+    if (done_.count(key)) return "";
+    std::vector<Target> targets;
+    {
+      // Regular files only, opened without blocking (an Include of a FIFO or /dev/zero).
+      InputFile in(file.string(), "geometry file");
+      if (in.size() > kMaxFileBytes || total_bytes_ + in.size() > kMaxTotalBytes)
+        throw Error(printable(file.string()) + ": the .geo files to scan (this one " + std::to_string(in.size() >> 10) +
+                    " KiB) exceed stagger's limit of " + std::to_string(kMaxFileBytes >> 20) + " MiB a file and " +
+                    std::to_string(kMaxTotalBytes >> 20) + " MiB in all");
+      const std::string text = in.read_all(kMaxFileBytes);
+      total_bytes_ += text.size();
+      if (std::string found = scan_text(file, text, targets); !found.empty()) return found;
+    }
+    chain_.push_back(key);
+    for (const Target& target : targets)
+      if (std::string found = follow(target); !found.empty()) return found;
+    chain_.pop_back();
+    done_.insert(key);
+    return "";
+  }
+
+ private:
+  static constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t{16} << 20;
+  static constexpr std::uintmax_t kMaxTotalBytes = std::uintmax_t{64} << 20;
+
+  /// A file that an Include or a Merge names, followed once its file is scanned.
+  struct Target {
+    std::filesystem::path path;
+    std::string at;  // "FILE:LINE: "
+    std::string word;
+    std::string extension;  // lower case
   };
-  for (std::size_t k = 0; k < tokens.size() && found.empty(); ++k) {
-    if (tokens[k].kind != GeoToken::identifier) continue;
-    const std::string& word = tokens[k].text;
-    // Option names (Print.Format, Mesh.Algorithm) are not commands.
-    if (is_symbol(k + 1, '.') || (k > 0 && is_symbol(k - 1, '.'))) continue;
-    if (const std::string what = outside_command(word); !what.empty()) {
-      found = at(k) + "'" + word + "' " + what;
-      return;
-    }
-    if (word == "Printf" || word == "Error" || word == "Warning") {
-      // Printf(...) > "file" and >> "file" write files.
-      std::size_t j = k + 1;
-      if (!is_symbol(j, '(')) continue;
-      int depth_paren = 0;
-      for (; j < tokens.size(); ++j) {
-        if (is_symbol(j, '(')) ++depth_paren;
-        if (is_symbol(j, ')') && --depth_paren == 0) break;
+
+  std::string follow(const Target& target) {
+    const std::string name = printable(target.path.string());
+    const std::string problem = file_problem(target.path.string());
+    if (problem.rfind("not found", 0) == 0) return "";  // gmsh reports a missing file itself
+    if (!problem.empty())
+      throw Error(target.at + "'" + target.word + "' of '" + name + "': it " + problem +
+                  "; only regular files can be read");
+    if (target.extension == ".msh") {
+      if (!refuse_commands_) return "";  // an allowed file may run scripts anyway
+      try {
+        check_msh_file(target.path.string());
+      } catch (const Error& error) {
+        throw Error(target.at + "'" + target.word +
+                    "' of a .msh that is not a mesh gmsh reads as one: " + error.what());
       }
-      if (is_symbol(j + 1, '>')) {
-        found = at(k) + "'" + word + "(...) >' writes a file";
-        return;
-      }
+      return "";
     }
-    if (word == "Merge" || word == "MergeWithBoundingBox") {
-      // CAD and mesh files are read (a .geo is scanned like an Include); gmsh may run
-      // others (e.g. a .py through ONELAB), and a computed name cannot be checked.
-      const bool literal = k + 1 < tokens.size() && tokens[k + 1].kind == GeoToken::string && is_symbol(k + 2, ';');
-      std::string extension = literal ? std::filesystem::path(tokens[k + 1].text).extension().string() : "";
+    if (target.extension != ".geo") return "";  // CAD and STL files: gmsh's readers
+    std::error_code ec;
+    const std::filesystem::path canonical = std::filesystem::weakly_canonical(target.path, ec);
+    const auto cycle = std::find(chain_.begin(), chain_.end(), ec ? target.path : canonical);
+    if (cycle != chain_.end()) {
+      std::string loop;
+      for (auto it = cycle; it != chain_.end(); ++it) loop += printable(it->filename().string()) + " -> ";
+      throw Error(target.at + "'" + target.word + "' of '" + name + "' " +
+                  (cycle + 1 == chain_.end() ? "includes the file itself" : "includes a file that includes this one") +
+                  ": an include cycle (" + loop + printable(target.path.filename().string()) + "); remove the " +
+                  target.word);
+    }
+    if (chain_.size() > 20) throw Error(target.at + "'" + target.word + "' nests more than 20 files deep");
+    return scan(target.path);
+  }
+
+  /// Scans one file's text; the files it names are added to `targets`.
+  std::string scan_text(const std::filesystem::path& file, const std::string& text, std::vector<Target>& targets) {
+    GeoLexer lexer(text);
+    const std::string name = printable(file.string());
+    const auto at = [&](int line) { return name + ":" + std::to_string(line) + ": "; };
+    const auto is_symbol = [](const GeoToken* t, char c) {
+      return t && t->kind == GeoToken::symbol && t->text[0] == c;
+    };
+    // Printf(...) > "file" and >> "file" write files: the paren depth at each open Printf.
+    std::vector<int> printf_depths;
+    int depth = 0;
+    bool after_dot = false;
+    GeoToken token;
+    while (lexer.next(token)) {
+      const bool follows_dot = after_dot;
+      after_dot = token.kind == GeoToken::symbol && token.text[0] == '.';
+      if (token.kind == GeoToken::symbol) {
+        if (token.text[0] == '(') ++depth;
+        if (token.text[0] == ')') {
+          --depth;
+          if (!printf_depths.empty() && depth == printf_depths.back()) {
+            printf_depths.pop_back();
+            if (refuse_commands_ && is_symbol(lexer.peek(0), '>'))
+              return at(token.line) + "'Printf(...) >' writes a file";
+          }
+        }
+        continue;
+      }
+      if (token.kind != GeoToken::identifier) continue;
+      const std::string& word = token.text;
+      // Option names (Print.Format, Mesh.Algorithm) are not commands.
+      if (is_symbol(lexer.peek(0), '.') || follows_dot) continue;
+      if (const std::string what = outside_command(word); !what.empty() && refuse_commands_)
+        return at(token.line) + "'" + word + "' " + what;
+      if ((word == "Printf" || word == "Error" || word == "Warning") && is_symbol(lexer.peek(0), '('))
+        printf_depths.push_back(depth);
+      const bool merge = word == "Merge" || word == "MergeWithBoundingBox";
+      if (!merge && word != "Include") continue;
+      const GeoToken* next = lexer.peek(0);
+      const bool literal = next && next->kind == GeoToken::string && is_symbol(lexer.peek(1), ';');
+      if (!literal) {
+        if (!refuse_commands_) continue;
+        return at(token.line) +
+               (merge ? "'" + word +
+                            "' of a computed file name (stagger allows Merge of .step, .stp, .iges, .igs, .brep, "
+                            ".brp, .msh, .stl and .geo files named by one string)"
+                      : std::string("'Include' with a computed file name cannot be checked; write the name as "
+                                    "one string"));
+      }
+      std::filesystem::path target(next->text);
+      if (target.is_relative()) target = file.parent_path() / target;
+      const std::string raw = target.extension().string();
+      std::string extension = raw;
       std::transform(extension.begin(), extension.end(), extension.begin(),
                      [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-      static const std::set<std::string> readable = {".step", ".stp", ".iges", ".igs", ".brep",
-                                                     ".brp",  ".msh", ".stl",  ".geo"};
-      if (!literal || !readable.count(extension)) {
-        found = at(k) + "'" + word + "' of " +
-                (literal ? "a '" + extension + "' file, which gmsh may run" : std::string("a computed file name")) +
-                " (stagger allows Merge of .step, .stp, .iges, .igs, .brep, .brp, .msh, .stl and .geo files named "
-                "by one string)";
-        return;
+      std::string upper = raw;
+      std::transform(upper.begin(), upper.end(), upper.begin(),
+                     [](unsigned char ch) { return static_cast<char>(std::toupper(ch)); });
+      if (merge) {
+        // gmsh picks its CAD and STL readers by the extension, in lower or upper case; any
+        // other file (a mixed-case extension too) it runs as a script unless it starts like
+        // a mesh (checked in follow).
+        static const std::set<std::string> readable = {".step", ".stp", ".iges", ".igs", ".brep",
+                                                       ".brp",  ".msh", ".stl",  ".geo"};
+        if (refuse_commands_ && (!readable.count(extension) || (raw != extension && raw != upper)))
+          return at(token.line) + "'" + word + "' of a '" + printable(raw) +
+                 "' file, which gmsh may run (stagger allows Merge of .step, .stp, .iges, .igs, .brep, .brp, "
+                 ".msh, .stl and .geo files named by one string)";
+      } else {
+        extension = ".geo";  // an Include is a .geo whatever its name
       }
-      if (extension == ".geo") {
-        std::filesystem::path merged(tokens[k + 1].text);
-        if (merged.is_relative()) merged = file.parent_path() / merged;
-        scan_geo_file(merged, seen, depth + 1, found);
-      }
-      continue;
+      targets.push_back({target, at(token.line), word, extension});
     }
-    if (word == "Include") {
-      if (k + 1 >= tokens.size() || tokens[k + 1].kind != GeoToken::string || !is_symbol(k + 2, ';')) {
-        found = at(k) + "'Include' with a computed file name cannot be checked; write the name as one string";
-        return;
-      }
-      if (depth > 20) {
-        found = at(k) + "'Include' nests more than 20 files deep";
-        return;
-      }
-      std::filesystem::path included(tokens[k + 1].text);
-      if (included.is_relative()) included = file.parent_path() / included;
-      scan_geo_file(included, seen, depth + 1, found);
-    }
+    return "";
   }
-}
+
+  bool refuse_commands_;
+  std::set<std::filesystem::path> done_;
+  std::vector<std::filesystem::path> chain_;
+  std::uintmax_t total_bytes_ = 0;
+};
 
 }  // namespace
 
 std::string find_outside_command(const std::string& path) {
-  std::set<std::filesystem::path> seen;
-  std::string found;
-  scan_geo_file(path, seen, 0, found);
-  return found;
+  return scan_geo(path, true);
+}
+
+std::string scan_geo(const std::string& path, bool refuse_commands) {
+  if (file_problem(path).rfind("not found", 0) == 0) return "";  // the readers say so
+  return GeoScan(refuse_commands).scan(path);
 }
 
 }  // namespace stagger::meshgen

@@ -34,6 +34,9 @@ struct GmshApi {
   decltype(&gmsh::model::getPhysicalName) get_physical_name;
   decltype(&gmsh::model::getPartitions) get_partitions;
   decltype(&gmsh::model::getParent) get_parent;
+  decltype(&gmsh::model::getBoundary) get_boundary;
+  decltype(&gmsh::model::getBoundingBox) get_bounding_box;
+  decltype(&gmsh::model::mesh::clear) mesh_clear;
   decltype(&gmsh::model::mesh::getElements) get_elements;
   decltype(&gmsh::model::mesh::addElementsByType) add_elements_by_type;
   decltype(&gmsh::model::mesh::refine) refine;
@@ -112,7 +115,18 @@ inline void getPartitions(const int dim, const int tag, std::vector<int>& partit
 inline void getParent(const int dim, const int tag, int& parentDim, int& parentTag) {
   gmsh_api().get_parent(dim, tag, parentDim, parentTag);
 }
+inline void getBoundary(const gmsh::vectorpair& dimTags, gmsh::vectorpair& outDimTags, const bool combined = true,
+                        const bool oriented = true, const bool recursive = false) {
+  gmsh_api().get_boundary(dimTags, outDimTags, combined, oriented, recursive);
+}
+inline void getBoundingBox(const int dim, const int tag, double& xmin, double& ymin, double& zmin, double& xmax,
+                           double& ymax, double& zmax) {
+  gmsh_api().get_bounding_box(dim, tag, xmin, ymin, zmin, xmax, ymax, zmax);
+}
 namespace mesh {
+inline void clear(const gmsh::vectorpair& dimTags = gmsh::vectorpair()) {
+  gmsh_api().mesh_clear(dimTags);
+}
 inline void getElements(std::vector<int>& elementTypes, std::vector<std::vector<std::size_t>>& elementTags,
                         std::vector<std::vector<std::size_t>>& nodeTags, const int dim = -1, const int tag = -1) {
   gmsh_api().get_elements(elementTypes, elementTags, nodeTags, dim, tag);

@@ -47,10 +47,12 @@ void out_of_memory() {
   ::_exit(4);
 }
 
-[[noreturn]] void child_main(int out_fd, const ChildRun& run, const std::function<PolygonSoup()>& read) {
-  // Die with the parent (e.g. stagger interrupted), in a process group of our own so that
-  // the time limit also ends whatever the .geo started (allowed commands).
+[[noreturn]] void child_main(int out_fd, pid_t parent, const ChildRun& run, const std::function<PolygonSoup()>& read) {
+  // Die with the parent (e.g. stagger killed by SIGKILL), in a process group of our own so
+  // that the time limit also ends whatever the .geo started (allowed commands). A parent that
+  // died before the prctl has left us to another process already: then end at once.
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (::getppid() != parent) ::_exit(5);
   ::setpgid(0, 0);
   const int null_fd = ::open("/dev/null", O_RDWR);
   if (null_fd >= 0) {
@@ -174,6 +176,7 @@ PolygonSoup read_isolated(const ChildRun& run, const std::function<PolygonSoup()
   // The child starts with this address space and resident set (throw_crash).
   const MemoryUse at_fork = own_memory_use();
   std::fflush(nullptr);  // nothing buffered is written twice
+  const pid_t parent = ::getpid();
   const pid_t child = ::fork();
   if (child < 0) {
     ::close(fds[0]);
@@ -182,7 +185,7 @@ PolygonSoup read_isolated(const ChildRun& run, const std::function<PolygonSoup()
   }
   if (child == 0) {
     ::close(fds[0]);
-    child_main(fds[1], run, read);
+    child_main(fds[1], parent, run, read);
   }
   ::close(fds[1]);
   std::string bytes;

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
-#include <system_error>
 
 #include "stagger/error.hpp"
 #include "stagger/meshgen.hpp"
@@ -23,9 +22,10 @@ std::string lower_extension(const std::string& path) {
 }  // namespace
 
 void require_file(const std::string& path, const std::string& what) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw Error(what + " '" + path + "' not found (or not a regular file); check the path");
+  const std::string problem = file_problem(path);
+  if (!problem.empty())
+    throw Error(what + " '" + path + "' " + problem +
+                (problem.rfind("not found", 0) == 0 ? "" : ", not a regular file") + "; check the path");
 }
 
 PolygonSoup read_mesh_file(const std::string& path, const GeoOptions& options) {

@@ -8,11 +8,13 @@
 #include <vector>
 
 #include "geo_parameters.hpp"
+#include "geo_scanner.hpp"
 #include "gmsh_api.hpp"
 #include "gmsh_child.hpp"
 #include "gmsh_session.hpp"
 #include "mesh_file.hpp"
 #include "msh_element_types.hpp"
+#include "point_estimate.hpp"
 #include "soup_extraction.hpp"
 #include "stagger/error.hpp"
 #include "stagger/meshgen.hpp"
@@ -59,6 +61,7 @@ PolygonSoup mesh_geo(const std::string& path, const std::string& file, const Geo
     gm::option::setNumber("Mesh.RecombinationAlgorithm", 1);
   }
   require_planar_model(path, true);
+  check_point_estimate(path, options.max_points);  // meshes the curves first
   gm::model::mesh::generate(2);
   throw_if_gmsh_error(path, "meshing");
   if (options.triangles == TrianglePolicy::subdivide) {
@@ -73,9 +76,11 @@ PolygonSoup mesh_geo(const std::string& path, const std::string& file, const Geo
 PolygonSoup read_geo(const std::string& path, const GeoOptions& options) {
   require_file(path, "geometry file");
   // STAGGER_GEO_SCAN=0 skips the scan but keeps the sandbox (tests of the sandbox).
+  // Allowed commands are not refused, but the files included are still checked (regular
+  // files, no include cycle).
   const char* scan = std::getenv("STAGGER_GEO_SCAN");
-  if (!options.allow_commands && !(scan && std::string(scan) == "0")) {
-    const std::string found = find_outside_command(path);
+  if (!(scan && std::string(scan) == "0")) {
+    const std::string found = scan_geo(path, !options.allow_commands);
     if (!found.empty())
       throw Error(found +
                   "; stagger refuses .geo commands that reach outside the mesh (set "

@@ -20,6 +20,8 @@ PolygonSoup read_msh(const std::string& path, TrianglePolicy triangles) {
 
 PolygonSoup read_msh(const std::string& path, const GeoOptions& options) {
   require_file(path, "mesh file");
+  // Before gmsh sees it: gmsh runs a file that does not start like a mesh as a .geo script.
+  check_msh_file(path);
   ChildRun run;
   run.path = path;
   run.doing = "reading";

@@ -173,9 +173,10 @@ Mesh read_mesh_section(Section& section, const std::string& scene_file, std::vec
     const std::string extension = resolved.extension().string();
     if (extension != ".geo" && extension != ".msh")
       section.fail("file", "'" + file + "' is neither a .geo nor a .msh file");
-    std::error_code error;
-    if (!std::filesystem::is_regular_file(resolved, error))
-      section.fail("file", "'" + file + "' not found (looked for " + resolved.lexically_normal().string() + ")",
+    if (const std::string problem = meshgen::file_problem(resolved.string()); !problem.empty())
+      section.fail("file",
+                   "'" + file + "' " + problem + (problem.rfind("not found", 0) == 0 ? "" : ", not a regular file") +
+                       " (looked for " + resolved.lexically_normal().string() + ")",
                    "paths are relative to the scene file");
     meshgen::GeoOptions options;
     const std::string triangles = section.choice("triangles", {"accept", "subdivide", "reject"}, "accept");
@@ -189,6 +190,9 @@ Mesh read_mesh_section(Section& section, const std::string& scene_file, std::vec
     options.memory_limit_mib = section.number("gmsh_memory_limit", options.memory_limit_mib);
     if (!(options.memory_limit_mib >= 0 && std::isfinite(options.memory_limit_mib)))
       section.fail("gmsh_memory_limit", "must be >= 0 MiB (0: no limit), got " + show(options.memory_limit_mib));
+    options.max_points = section.number("max_points", options.max_points);
+    if (!(options.max_points >= 0 && std::isfinite(options.max_points)))
+      section.fail("max_points", "must be >= 0 (0: no limit), got " + show(options.max_points));
     options.allow_commands = section.boolean("allow_geo_commands", false);
     std::vector<std::string> parameter_names;
     if (auto parameters = section.subtable("parameters")) {

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "stagger/error.hpp"
+#include "toml_reader.hpp"
 
 namespace stagger::scene_detail {
 
@@ -16,6 +17,11 @@ struct Segment {
 
 [[noreturn]] void fail(const std::string& label, const std::string& what) {
   throw Error(label + ": " + what);
+}
+
+// A label cut to 80 characters (a path or value 50 000 levels deep is 100 000 of them).
+std::string shortened(const std::string& label) {
+  return label.size() > 80 ? label.substr(0, 80) + "..." : label;
 }
 
 std::vector<Segment> split_path(const std::string& path, const std::string& label) {
@@ -45,6 +51,9 @@ std::vector<Segment> split_path(const std::string& path, const std::string& labe
       position = close + 1;
     }
     segments.push_back(segment);
+    if (segments.size() > kMaxKeyDepth)
+      fail(shortened(label),
+           "the key nests more than " + std::to_string(kMaxKeyDepth) + " levels deep; no scene key is that deep");
     if (dot == std::string::npos) break;
     start = dot + 1;
   }
@@ -60,6 +69,9 @@ bool looks_numeric(const std::string& value) {
 
 // Parses `key = value` as a one-line document whose nodes carry the source "--set ...".
 toml::table parse_assignment(const std::string& keys, const std::string& value, const std::string& label) {
+  if (!too_deep_line(keys + " = " + value).empty())
+    fail(shortened(label), "the value nests more than " + std::to_string(kMaxKeyDepth) +
+                               " levels deep (dotted keys and inline tables); no scene key is that deep");
   try {
     return toml::parse(keys + " = " + value, label);
   } catch (const toml::parse_error&) {

@@ -10,10 +10,12 @@
 #include <set>
 #include <sstream>
 
+#include "io/atomic_file.hpp"
 #include "option_table_reader.hpp"
 #include "overrides.hpp"
 #include "scene_internal.hpp"
 #include "stagger/error.hpp"
+#include "stagger/meshgen.hpp"
 #include "strength/strength_models.hpp"
 #include "warnings.hpp"
 
@@ -379,11 +381,16 @@ namespace {
 Scene read_scene(const std::string& path, const std::vector<std::pair<std::string, std::string>>& overrides,
                  Mesh* outline) {
   using namespace scene_detail;
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) throw Error(path + ": scene file not found; check the path");
+  if (const std::string problem = meshgen::file_problem(path); !problem.empty())
+    throw Error(path + ": scene file " +
+                (problem.rfind("not found", 0) == 0 ? problem : problem + ", not a regular file") + "; check the path");
   toml::table document;
   try {
-    document = toml::parse_file(path);
+    const std::string text = io_detail::read_file(path);
+    if (const std::string deep = too_deep_line(text); !deep.empty())
+      throw Error(path + ":" + deep.substr(5) + ": a key nests more than " + std::to_string(kMaxKeyDepth) +
+                  " levels deep (dotted parts, table headers and inline tables); stagger reads no deeper scenes");
+    document = toml::parse(text, path);
   } catch (const toml::parse_error& failure) {
     const auto& begin = failure.source().begin;
     throw Error(path + ":" + std::to_string(begin.line) + ":" + std::to_string(begin.column) +

@@ -73,6 +73,40 @@ std::string unsafe_name_reason(std::string_view name) {
   return {};
 }
 
+std::string too_deep_line(std::string_view text) {
+  // Dots between a line start, '[', '{', ',' or '=' and the next of these are a key's dotted
+  // parts (a float's one dot after '=' counts too, harmlessly); '{' opens a nested table.
+  std::size_t dots = 0, braces = 0, line = 1;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '"' || c == '\'') {
+      const bool multi = text.substr(i, 3) == std::string(3, c);
+      const std::string_view close = multi ? text.substr(i, 3) : text.substr(i, 1);
+      std::size_t j = i + close.size();
+      while (j < text.size() && text.substr(j, close.size()) != close) {
+        if (c == '"' && text[j] == '\\') ++j;  // an escape in a basic string
+        if (j < text.size() && text[j] == '\n') {
+          if (!multi) break;  // an unclosed string: the parser reports it
+          ++line;
+        }
+        ++j;
+      }
+      const bool cut = !multi && j < text.size() && text[j] == '\n';
+      i = cut ? j - 1 : std::min(j + close.size(), text.size()) - 1;
+    } else if (c == '#') {
+      while (i + 1 < text.size() && text[i + 1] != '\n') ++i;
+    } else if (c == '\n' || c == '[' || c == ',' || c == '=' || c == '{' || c == '}') {
+      if (c == '\n') ++line;
+      if (c == '{' && ++braces >= kMaxKeyDepth) return "line " + std::to_string(line);
+      if (c == '}' && braces > 0) --braces;
+      dots = 0;
+    } else if (c == '.') {
+      if (++dots + braces >= kMaxKeyDepth) return "line " + std::to_string(line);
+    }
+  }
+  return {};
+}
+
 std::string safe_name(std::string_view name) {
   std::string result;
   for (char c : name.substr(0, kMaxNameLength)) result += safe_name_character(c) ? c : '_';

@@ -35,6 +35,13 @@ std::string unsafe_name_reason(std::string_view name);
 /// too), truncated to kMaxNameLength; "scene" if nothing is left.
 std::string safe_name(std::string_view name);
 
+/// The deepest a key may nest (dotted parts, table headers and inline tables together): the
+/// TOML parser recurses once a level, and a 50 000-deep key overflowed its stack.
+constexpr std::size_t kMaxKeyDepth = 64;
+/// Where TOML `text` nests deeper than kMaxKeyDepth, as "line N", or "" (a scan of the text,
+/// outside strings and comments, before the parser sees it).
+std::string too_deep_line(std::string_view text);
+
 class Section {
  public:
   Section(std::string file, const toml::table& table, std::string path);

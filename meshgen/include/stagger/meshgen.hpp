@@ -28,11 +28,26 @@ struct GeoOptions {
   TrianglePolicy triangles = TrianglePolicy::accept;       ///< what to do with leftover triangles
   double time_limit_seconds = 600;                         ///< wall-time limit of the gmsh child; 0: none
   double memory_limit_mib = 8192;                          ///< address-space limit of the gmsh child (MiB); 0: none
+  /// Refuse a .geo whose mesh would have more points than this (estimated from its boundary
+  /// mesh before the surfaces are meshed; 0: no limit). A mesh of 1e6 points took more than
+  /// 600 s (the time limit) on a 2-core machine.
+  double max_points = 5e6;
   /// Allow .geo commands that reach outside the mesh (SystemCall, Printf > file, Exit, Sleep,
   /// Save, Merge of a script, ...). They run arbitrary code; by default they are refused
   /// before gmsh runs.
   bool allow_commands = false;
 };
+
+/// Why `path` cannot be read as a mesh or geometry file, or "" if it can: "not found", "is a
+/// directory", "is a FIFO (named pipe)", "is a character device", "is a symbolic link loop",
+/// ... (links are followed, so a link to a regular file is one).
+std::string file_problem(const std::string& path);
+
+/// Throws stagger::Error "FILE:LINE: what is wrong" unless `path` is a mesh gmsh reads as one:
+/// it starts with $MeshFormat, version 2.x or 4.0/4.1, ASCII or binary (gmsh runs any other
+/// .msh as a .geo script), and in an ASCII file every $PhysicalNames, $Nodes and $Elements
+/// count matches its entries (gmsh drops the entries beyond a low count without a word).
+void check_msh_file(const std::string& path);
 
 /// The first .geo command of `path` (or of a file it includes) that reaches outside the
 /// mesh, as "FILE:LINE: what", or "" if there is none (docs/mesh.md lists the commands).

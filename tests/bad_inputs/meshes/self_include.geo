@@ -1,0 +1,3 @@
+// Includes itself.
+Include "unit_square.geo";
+Include "self_include.geo";

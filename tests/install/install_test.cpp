@@ -157,4 +157,22 @@ TEST_F(Install, InstalledCommandLineRunsFromItsOwnLibraries) {
   EXPECT_GT(fs::file_size(vtu), 1000u) << read_text(log);
 }
 
+// Every installed scene is checked by the installed command (`stagger check` loads it and
+// meshes it): the scenes whose meshes are .geo files find them in share/stagger/geometries.
+TEST_F(Install, EveryInstalledSceneChecks) {
+  ASSERT_NO_FATAL_FAILURE(install());
+  int scenes = 0, with_geo = 0;
+  for (const auto& entry : fs::directory_iterator(prefix_ / "share/stagger/scenes")) {
+    if (entry.path().extension() != ".toml") continue;
+    ++scenes;
+    with_geo += read_text(entry.path()).find("../geometries/") != std::string::npos;
+    const fs::path log = root_ / (entry.path().stem().string() + ".log");
+    ASSERT_RUNS("cd " + quote(root_) + " && env -u LD_LIBRARY_PATH " + quote(prefix_ / "bin/stagger") + " check " +
+                    quote(entry.path()),
+                log);
+  }
+  EXPECT_GE(scenes, 23);
+  EXPECT_GE(with_geo, 8);
+}
+
 }  // namespace

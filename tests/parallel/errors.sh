@@ -38,4 +38,32 @@ check collapse "$scenes/sedov.toml" --set mesh.nx=12 --set mesh.ny=12 --set nume
 grep -q "limiting zone" "$work/collapse-np3.err" || { echo "FAIL: collapse: no limiting zone named"; status=1; }
 cmp "$work/collapse-serial/history.csv" "$work/collapse-np3/history.csv" ||
   { echo "FAIL: collapse: history.csv differs"; status=1; }
+# A distributed checkpoint with a damaged piece (truncated, missing, or another rank's): the
+# restart stops every rank with one error line naming the piece; nothing dies inside MPI (a
+# rank that read a bad piece used to leave the others alone in the restore's collectives:
+# MPI_ERR_TRUNCATE).
+sedov=("$scenes/sedov.toml" --set mesh.nx=12 --set mesh.ny=12 --set time.end=0.2 --set output.checkpoint_every_cycles=20)
+mpirun --oversubscribe -np 3 "$stagger" run "${sedov[@]}" --quiet --out "$work/pieces" > /dev/null 2>&1 ||
+  { echo "FAIL: pieces: the checkpointed run failed"; status=1; }
+parity=$(grep -a '^set ' "$work/pieces/sedov.checkpoint" | cut -d' ' -f2)  # the manifest's set
+for damage in truncated missing foreign; do
+  rm -rf "$work/damaged" "$work/restart-$damage"
+  cp -r "$work/pieces" "$work/damaged"
+  piece="$work/damaged/sedov.checkpoint.$parity.r0001"
+  case $damage in
+    truncated) truncate -s 1000 "$piece" ;;
+    missing) rm "$piece" ;;
+    foreign) cp "$work/damaged/sedov.checkpoint.$parity.r0000" "$piece" ;;
+  esac
+  if mpirun --oversubscribe -np 3 "$stagger" run "${sedov[@]}" --quiet --out "$work/restart-$damage" \
+    --restart "$work/damaged/sedov.checkpoint" > "$work/$damage.out" 2> "$work/$damage.err"; then
+    echo "FAIL: $damage piece: the restart succeeded"; status=1; continue
+  fi
+  lines=$(grep -c '^stagger: error:' "$work/$damage.err" || true)
+  [ "$lines" = 1 ] || { echo "FAIL: $damage piece: $lines error lines:"; cat "$work/$damage.err"; status=1; }
+  grep -q 'MPI_ERR' "$work/$damage.err" && { echo "FAIL: $damage piece: an MPI error"; status=1; }
+  grep '^stagger: error:' "$work/$damage.err" | grep -q "r0001" ||
+    { echo "FAIL: $damage piece: the error does not name the piece"; cat "$work/$damage.err"; status=1; }
+  echo "$damage piece: $(grep '^stagger: error:' "$work/$damage.err" | cut -c1-150)"
+done
 exit $status

@@ -181,9 +181,11 @@ class Driver {
     load_checkpoint_file(path);
   }
 
-  void load_checkpoint_file(const std::string& path) {
-    const std::string data = io_detail::read_file(path);
-    const std::string source = "checkpoint '" + path + "'";
+  // The checks of a checkpoint file's own part (header, version, checksum, scene, driver
+  // fields); returns the simulation state blob within `data`.
+  std::string_view checked_driver_part(const std::string& data, const std::string& path, const std::string& source,
+                                       DriverState& state, std::vector<std::pair<double, std::string>>& entries,
+                                       std::string& history_rows) const {
     if (data.compare(0, checkpoint_magic.size(), checkpoint_magic) != 0) {
       throw Error("'" + path + "' is not a stagger checkpoint (wrong header)");
     }
@@ -213,7 +215,6 @@ class Driver {
       throw Error(source + " was written by scene '" + scene + "', not '" + simulation_.problem().name +
                   "'; restart with the scene it came from");
     }
-    DriverState state;
     state.next_dump_time = in.f64();
     state.dump_slot = in.i64();
     state.dump_count = in.i64();
@@ -221,17 +222,37 @@ class Driver {
     state.last_history_cycle = in.i64();
     state.loop_seconds = in.f64();
     state.wall_seconds = in.f64();
-    std::vector<std::pair<double, std::string>> entries(in.count(16, ".pvd entries"));
+    entries.resize(in.count(16, ".pvd entries"));
     for (auto& [time, file] : entries) {
       time = in.f64();
       file = in.bytes();
     }
-    std::string history_rows = in.bytes();
+    history_rows = in.bytes();
     const std::string_view blob = in.bytes_view();
     in.expect_end();
     // The checksum guards against damage, not against a crafted file: every field that ends
     // up in the new run's files or schedule is checked against what a run can have written.
     check_driver_fields(source, state, entries, history_rows);
+    return blob;
+  }
+
+  void load_checkpoint_file(const std::string& path) {
+    // In a distributed run every rank reads its own piece: all of them reach the agreement
+    // below, so that a missing, damaged or foreign piece on one rank stops every rank with its
+    // message (docs/parallel.md) instead of leaving the others alone in the restore's collectives.
+    std::string data, error;
+    const std::string source = "checkpoint '" + path + "'";
+    DriverState state;
+    std::vector<std::pair<double, std::string>> entries;
+    std::string history_rows;
+    std::string_view blob;
+    try {
+      data = io_detail::read_file(path);
+      blob = checked_driver_part(data, path, source, state, entries, history_rows);
+    } catch (const Error& e) {
+      error = e.what();
+    }
+    if (error = simulation_.agree(error); !error.empty()) throw Error(error);
     simulation_.restore(blob, source);
     const double t_end = simulation_.problem().t_end;
     if (!(t_end > simulation_.time())) {

@@ -236,8 +236,12 @@ std::string Simulation::checkpoint() const {
   return w.take();
 }
 
-void Simulation::restore(std::string_view blob, const std::string& source) {
-  Impl& s = *impl_;
+namespace {
+
+// The checks of a state blob (magic, physics digest, every array's name and size); returns its
+// clock and leaves `arrays` at the first array.
+Clock checked_blob(const Simulation::Impl& s, std::string_view blob, const std::string& source,
+                   io_detail::ByteReader& arrays) {
   io_detail::ByteReader r(blob, source);
   if (blob.size() < kBlobMagic.size() || !r.raw_equals(kBlobMagic)) {
     if (blob.substr(0, kBlobMagic.size() - 1) == kBlobMagic.substr(0, kBlobMagic.size() - 1))
@@ -260,7 +264,7 @@ void Simulation::restore(std::string_view blob, const std::string& source) {
   const Clock clock = read_clock(r);
   // Two passes over the arrays: check every name and size, then copy, so that a bad blob
   // leaves the state untouched.
-  io_detail::ByteReader arrays = r;
+  arrays = r;
   for (const StateField& f : state_fields()) {
     if (!(f.flags & kCheckpointed)) continue;
     if (r.bytes_view() != f.name) r.fail(std::string("is corrupt: expected the field '") + f.name + "'");
@@ -271,6 +275,25 @@ void Simulation::restore(std::string_view blob, const std::string& source) {
     }
   }
   r.expect_end();
+  return clock;
+}
+
+}  // namespace
+
+void Simulation::restore(std::string_view blob, const std::string& source) {
+  // Every check before any change and before any collective; in a distributed run the ranks
+  // then agree, so a bad piece on one rank (another rank's, another set's) stops every rank with
+  // its message instead of leaving the others alone in the collectives of recompute_state.
+  std::string problem;
+  Clock clock;
+  io_detail::ByteReader arrays(blob, source);
+  try {
+    clock = checked_blob(*impl_, blob, source, arrays);
+  } catch (const Error& e) {
+    problem = e.what();
+  }
+  if (problem = agree(problem); !problem.empty()) throw Error(problem);
+  Impl& s = *impl_;
   for (const StateField& f : state_fields()) {
     if (!(f.flags & kCheckpointed)) continue;
     arrays.bytes_view();
@@ -283,5 +306,6 @@ void Simulation::restore(std::string_view blob, const std::string& source) {
   s.dt_next = clock.dt_next;
   s.dt_zone = clock.dt_zone;
 }
+
 
 }  // namespace stagger

@@ -307,5 +307,4 @@ void Simulation::restore(std::string_view blob, const std::string& source) {
   s.dt_zone = clock.dt_zone;
 }
 
-
 }  // namespace stagger

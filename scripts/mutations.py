@@ -203,8 +203,8 @@ def main():
             if args.only:
                 # Only the rows of the mutations run are replaced; the others stay, in the table's order.
                 fresh = {line.split(" | ")[0]: line for line in table[2:]}
-                old = [line for line in found.group(1).splitlines() if line.startswith("| ")]
-                rows_out = table[:2] + [fresh.pop(line.split(" | ")[0], line) for line in old[2:]] + list(fresh.values())
+                old = [line for line in found.group(1).splitlines() if line.startswith("| ")][1:]  # no header
+                rows_out = table[:2] + [fresh.pop(line.split(" | ")[0], line) for line in old] + list(fresh.values())
                 text = "\n".join(rows_out)
             doc.write_text(pattern.sub(lambda _: BEGIN + "\n" + text + "\n" + END, content))
         if any(len(f) < 2 for _, f in rows):

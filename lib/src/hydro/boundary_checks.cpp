@@ -15,26 +15,6 @@ std::uint64_t edge_key(Index a, Index b) {
   return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint32_t>(std::max(a, b));
 }
 
-const char* kind_word(BoundaryKind kind) {
-  switch (kind) {
-    case BoundaryKind::wall:
-      return "wall";
-    case BoundaryKind::velocity:
-      return "velocity";
-    case BoundaryKind::free:
-      return "free";
-    case BoundaryKind::pressure:
-      return "pressure";
-    case BoundaryKind::periodic:
-      return "periodic";
-    case BoundaryKind::transmitting:
-      return "transmitting";
-    case BoundaryKind::fixed:
-      return "fixed";
-  }
-  return "?";
-}
-
 std::string edge_text(const Mesh& mesh, const std::array<Index, 2>& edge) {
   std::ostringstream out;
   out.precision(6);
@@ -53,7 +33,7 @@ std::size_t count_edges(const BoundaryTag& tag, Test&& test, std::array<Index, 2
 }
 
 std::string head(const BoundaryCondition& bc) {
-  return std::string("boundary '") + bc.tag + "' (type " + kind_word(bc.kind) + ")";
+  return std::string("boundary '") + bc.tag + "' (type " + boundary_kind_name(bc.kind) + ")";
 }
 
 // In rz: a velocity or pressure condition on the axis, a periodic pair that is not an axial
@@ -76,7 +56,7 @@ std::string rz_problem(const Mesh& mesh, const BoundaryCondition& bc) {
       msg << "the axis keeps v_r = 0 by itself and a velocity condition there can only prescribe v_r (the energy "
              "audit would not close): give the axis type = \"wall\" or \"free\" (both leave it the symmetry line)";
     else
-      msg << "the axis is a line of zero area (r = 0), so a " << kind_word(bc.kind)
+      msg << "the axis is a line of zero area (r = 0), so a " << boundary_kind_name(bc.kind)
           << " condition there does nothing: give the axis type = \"free\" or \"wall\"";
     return msg.str();
   }
@@ -141,6 +121,26 @@ std::optional<BoundaryGeometryProblem> boundary_geometry_problem(const Problem& 
       if (std::string why = rz_problem(mesh, bc); !why.empty()) return BoundaryGeometryProblem{i, why};
   }
   return std::nullopt;
+}
+
+const char* boundary_kind_name(BoundaryKind kind) {
+  switch (kind) {
+    case BoundaryKind::wall:
+      return "wall";
+    case BoundaryKind::velocity:
+      return "velocity";
+    case BoundaryKind::free:
+      return "free";
+    case BoundaryKind::pressure:
+      return "pressure";
+    case BoundaryKind::periodic:
+      return "periodic";
+    case BoundaryKind::transmitting:
+      return "transmitting";
+    case BoundaryKind::fixed:
+      return "fixed";
+  }
+  return "?";
 }
 
 }  // namespace stagger

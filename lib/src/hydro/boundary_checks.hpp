@@ -21,6 +21,9 @@ struct BoundaryGeometryProblem {
 // translation (the axis or any radial translation).
 std::optional<BoundaryGeometryProblem> boundary_geometry_problem(const Problem& problem);
 
+// The scene's word for a boundary kind ("wall", "velocity", ...: the `type` key).
+const char* boundary_kind_name(BoundaryKind kind);
+
 // Points within this distance of x = 0 are on the rz axis (the set-up puts them on it).
 double axis_tolerance(const Mesh& mesh);
 

@@ -6,6 +6,7 @@
 #include <set>
 #include <variant>
 
+#include "hydro/boundary_checks.hpp"
 #include "stagger/option_table.hpp"
 #include "strength/strength_models.hpp"
 
@@ -66,26 +67,6 @@ class Digest {
  private:
   std::vector<DigestEntry>& entries_;
 };
-
-const char* boundary_type(BoundaryKind kind) {
-  switch (kind) {
-    case BoundaryKind::wall:
-      return "wall";
-    case BoundaryKind::velocity:
-      return "velocity";
-    case BoundaryKind::free:
-      return "free";
-    case BoundaryKind::pressure:
-      return "pressure";
-    case BoundaryKind::periodic:
-      return "periodic";
-    case BoundaryKind::transmitting:
-      return "transmitting";
-    case BoundaryKind::fixed:
-      return "fixed";
-  }
-  return "?";
-}
 
 void mesh_entries(const Mesh& m, Digest& d) {
   d.value("mesh", "points", static_cast<double>(m.num_points()));
@@ -233,7 +214,7 @@ std::vector<DigestEntry> setup_digest(const Simulation::Impl& s) {
     }
   }
   for (const BoundaryCondition& bc : problem.boundaries) {
-    d.value("boundaries", bc.tag + ".type", boundary_type(bc.kind));
+    d.value("boundaries", bc.tag + ".type", boundary_kind_name(bc.kind));
     if (bc.kind == BoundaryKind::periodic) d.value("boundaries", bc.tag + ".partner", bc.partner);
   }
   for (std::size_t i = 0; i < problem.deposits.size(); ++i) {

@@ -25,6 +25,7 @@
 #include <string_view>
 #include <vector>
 
+#include "driver/eta.hpp"
 #include "driver/output_directory.hpp"
 #include "io/atomic_file.hpp"
 #include "io/byte_stream.hpp"
@@ -552,14 +553,16 @@ class Driver {
     return m;
   }
 
-  void print_progress(Clock::time_point loop_start, double loop_start_time, double t_end, bool terminal) const {
+  void print_progress(Clock::time_point loop_start, double loop_start_time, double t_end, bool terminal) {
     const double t = simulation_.time();
     const double elapsed = seconds_since(loop_start);
+    // The time to go from the recent trend of dt (driver/eta.hpp), the average rate so far
+    // until there are samples enough.
+    eta_.add(t, simulation_.dt(), simulation_.cycle(), elapsed);
+    double remaining = eta_.seconds_to(t_end);
+    if (remaining < 0 && t > loop_start_time && elapsed > 0) remaining = elapsed * (t_end - t) / (t - loop_start_time);
     char eta[32] = "?";
-    if (t > loop_start_time && elapsed > 0) {
-      const double remaining = elapsed * (t_end - t) / (t - loop_start_time);
-      std::snprintf(eta, sizeof eta, "%.0f s", remaining);
-    }
+    if (remaining >= 0) std::snprintf(eta, sizeof eta, "%.0f s", remaining);
     std::fprintf(
         stderr,
         terminal ? "\rcycle %ld  t = %.6e  dt = %.3e  ETA %s      " : "cycle %ld  t = %.6e  dt = %.3e  ETA %s\n",
@@ -588,6 +591,7 @@ class Driver {
   DriverState state_;
   int next_parity_ = 0;  // the set of a distributed run's next checkpoint files
   Clock::time_point start_ = Clock::now();
+  EtaEstimate eta_;  // the progress line's time to go
 };
 
 }  // namespace

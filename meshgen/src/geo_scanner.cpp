@@ -129,23 +129,6 @@ class GeoLexer {
   std::deque<GeoToken> ahead_;
 };
 
-/// Text from the file for a message: control characters and bytes outside printable ASCII
-/// as \xNN (a file name in an Include must not reach the terminal as an escape sequence).
-std::string printable(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (byte < 0x20 || byte >= 0x7f) {
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
-      out += escaped;
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
-
 /// What a command does, for the message; "" if the word is not refused.
 std::string outside_command(const std::string& word) {
   static const std::map<std::string, std::string> commands = {

@@ -3,6 +3,7 @@
 #include "input_file.hpp"
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 
 #include <fcntl.h>
@@ -89,6 +90,21 @@ std::string InputFile::read_all(std::uintmax_t max_bytes) {
     if (text.size() > max_bytes) throw too_large();  // it grew while being read
   }
   return text;
+}
+
+std::string printable(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte >= 0x7f) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
+      out += escaped;
+    } else {
+      out += c;
+    }
+  }
+  return out;
 }
 
 }  // namespace stagger::meshgen

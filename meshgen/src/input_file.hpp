@@ -29,4 +29,8 @@ class InputFile {
   std::uintmax_t size_ = 0;
 };
 
+/// Text from an input file for a message: control characters and bytes outside printable
+/// ASCII as \xNN (a file name or line must not reach the terminal as an escape sequence).
+std::string printable(const std::string& text);
+
 }  // namespace stagger::meshgen

@@ -69,17 +69,8 @@ std::vector<std::string> words(const std::string& line) {
 /// A line for a message: quoted, at most 60 characters, control characters and other
 /// bytes outside printable ASCII as \xNN (they must not reach the terminal).
 std::string quoted(const std::string& line) {
-  std::string text = "'";
-  for (const char c : line.substr(0, 60)) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (byte < 0x20 || byte >= 0x7f) {
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
-      text += escaped;
-    } else {
-      text += c;
-    }
-  }
+  std::string text(1, '\'');
+  text += printable(line.substr(0, 60));
   return text.append(line.size() > 60 ? "...'" : "'");
 }
 

@@ -20,6 +20,17 @@ namespace stagger::scene_detail {
 
 namespace {
 
+// The mesh point nearest to (x, y) (the lowest index among equals).
+Index nearest_point(const Mesh& mesh, double x, double y) {
+  Index nearest = 0;
+  double best = std::numeric_limits<double>::infinity();
+  for (Index p = 0; p < mesh.num_points(); ++p) {
+    const double d = std::hypot(mesh.x[p] - x, mesh.y[p] - y);
+    if (d < best) best = d, nearest = p;
+  }
+  return nearest;
+}
+
 std::string point_text(double x, double y) {
   std::ostringstream out;
   out.precision(6);
@@ -153,12 +164,7 @@ double driver_speed(const Problem& problem, const std::vector<ZoneState>& states
       if (total > 0) speed = std::max(speed, std::sqrt(2 * deposit.energy * peak / total));
       continue;
     }
-    Index nearest = 0;
-    double best = std::numeric_limits<double>::infinity();
-    for (Index p = 0; p < mesh.num_points(); ++p) {
-      const double d = std::hypot(mesh.x[p] - deposit.x, mesh.y[p] - deposit.y);
-      if (d < best) best = d, nearest = p;
-    }
+    const Index nearest = nearest_point(mesh, deposit.x, deposit.y);
     double mass = 0;
     for (Index c = mesh.point_corner_begin[nearest]; c < mesh.point_corner_begin[nearest + 1]; ++c) {
       const Index z = mesh.corner_zone[mesh.point_corners[c]];
@@ -320,12 +326,8 @@ void check_deposits(const Problem& problem, const Locator& key) {
     bool inside = false;
     for (Index z = 0; z < mesh.num_zones() && !inside; ++z) inside = zone_contains(mesh, z, deposit.x, deposit.y);
     if (inside) continue;
-    Index nearest = 0;
-    double best = std::numeric_limits<double>::infinity();
-    for (Index p = 0; p < mesh.num_points(); ++p) {
-      const double d = std::hypot(mesh.x[p] - deposit.x, mesh.y[p] - deposit.y);
-      if (d < best) best = d, nearest = p;
-    }
+    const Index nearest = nearest_point(mesh, deposit.x, deposit.y);
+    const double best = std::hypot(mesh.x[nearest] - deposit.x, mesh.y[nearest] - deposit.y);
     double width = 0;
     for (Index j = mesh.point_corner_begin[nearest]; j < mesh.point_corner_begin[nearest + 1]; ++j)
       width = std::max(width, longest_chord(mesh, mesh.corner_zone[mesh.point_corners[j]]));

@@ -33,16 +33,15 @@ inline void pseudo_inverse(double a, double b, double c, double* out) {
 // Barth-Jespersen factor for a reconstruction that changes the mean q by `delta` at one
 // evaluation point, within [qmin, qmax].
 inline double bj_factor(double q, double delta, double qmin, double qmax) {
-  // A change far below the neighbourhood's range does not limit: along a direction in which
-  // the field is flat (a ridge, a column where cos(2 pi x) = 0) both it and the room are
-  // round-off, their quotient is noise, and it would cut the whole gradient, across the ridge
-  // too; a uniform velocity added everywhere (another frame) changes that noise, and the
-  // remap was not Galilean invariant (docs/ale.md, "Reconstruction and limiter"). The
-  // overshoot allowed is below 1e-12 of the range.
-  if (std::abs(delta) <= 1e-12 * (qmax - qmin)) return 1.0;
-  // min(1, room / delta), dividing only when the quotient is below 1 (the same value).
-  if (delta > 0) return qmax - q < delta ? (qmax - q) / delta : 1.0;
-  if (delta < 0) return qmin - q > delta ? (qmin - q) / delta : 1.0;
+  // min(1, room / delta), dividing only when the quotient is below 1 (the same value). A
+  // change far below the neighbourhood's range does not limit: along a direction in which the
+  // field is flat (a ridge, a column where cos(2 pi x) = 0) both it and the room are round-off,
+  // their quotient is noise, and it would cut the whole gradient, across the ridge too; a
+  // uniform velocity added everywhere (another frame) changes that noise, and the remap was not
+  // Galilean invariant (docs/ale.md, "Reconstruction and limiter"). The overshoot allowed is
+  // below 1e-12 of the range; the test costs nothing where nothing limits.
+  if (delta > 0 && qmax - q < delta) return delta <= 1e-12 * (qmax - qmin) ? 1.0 : (qmax - q) / delta;
+  if (delta < 0 && qmin - q > delta) return -delta <= 1e-12 * (qmax - qmin) ? 1.0 : (qmin - q) / delta;
   return 1.0;
 }
 

@@ -5,14 +5,23 @@
 #include <cmath>
 #include <cstdint>
 #include <sstream>
-#include <unordered_set>
 
 namespace stagger {
 
 namespace {
 
-std::uint64_t edge_key(Index a, Index b) {
-  return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint32_t>(std::max(a, b));
+// Whether the side a-b has a zone on each side: two of a's corners have b as a neighbour
+// (the tagged edges only are looked at: no table of every side).
+bool interior_edge(const Mesh& mesh, Index a, Index b) {
+  int zones = 0;
+  for (Index j = mesh.point_corner_begin[a]; j < mesh.point_corner_begin[a + 1]; ++j) {
+    const Index c = mesh.point_corners[j], z = mesh.corner_zone[c];
+    const Index begin = mesh.zone_corner_begin[z], end = mesh.zone_corner_begin[z + 1];
+    const Index next = mesh.corner_point[c + 1 < end ? c + 1 : begin],
+                prev = mesh.corner_point[c > begin ? c - 1 : end - 1];
+    zones += next == b || prev == b;
+  }
+  return zones >= 2;
 }
 
 std::string edge_text(const Mesh& mesh, const std::array<Index, 2>& edge) {
@@ -93,14 +102,6 @@ double axis_tolerance(const Mesh& mesh) {
 std::optional<BoundaryGeometryProblem> boundary_geometry_problem(const Problem& problem) {
   const Mesh& mesh = problem.mesh;
   if (problem.boundaries.empty()) return std::nullopt;
-  // The interior sides: those with a zone on each side.
-  std::unordered_set<std::uint64_t> interior;
-  const std::vector<Index> twin = side_twins(mesh);
-  for (Index z = 0; z < mesh.num_zones(); ++z) {
-    const Index b = mesh.zone_corner_begin[z], n = mesh.zone_corner_begin[z + 1] - b;
-    for (Index k = 0; k < n; ++k)
-      if (twin[b + k] >= 0) interior.insert(edge_key(mesh.corner_point[b + k], mesh.corner_point[b + (k + 1) % n]));
-  }
   for (std::size_t i = 0; i < problem.boundaries.size(); ++i) {
     const BoundaryCondition& bc = problem.boundaries[i];
     const int t = mesh.tag_index(bc.tag);
@@ -108,7 +109,7 @@ std::optional<BoundaryGeometryProblem> boundary_geometry_problem(const Problem& 
     const BoundaryTag& tag = mesh.tags[t];
     std::array<Index, 2> first{};
     const std::size_t n = count_edges(
-        tag, [&](const std::array<Index, 2>& e) { return interior.count(edge_key(e[0], e[1])) > 0; }, first);
+        tag, [&](const std::array<Index, 2>& e) { return interior_edge(mesh, e[0], e[1]); }, first);
     if (n > 0) {
       std::ostringstream msg;
       msg << head(bc) << ": " << n << " of its " << tag.edges.size()
